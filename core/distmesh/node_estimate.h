@@ -1,0 +1,16 @@
+// The expected node count of a DistMesh mesh, before meshing: an equilateral mesh has about
+// N = (2 / sqrt(3)) * integral over the domain of 1 / (h0 h(p))^2 dA nodes.
+#pragma once
+
+#include "core/distmesh/problem.h"
+
+namespace meshd {
+
+// Estimated node count of `problem`'s mesh (midpoint-rule integral on a grid over the box).
+// Throws Error(kInvalidArgument) naming "geometry" when the domain is empty.
+double estimate_node_count(const Problem& problem);
+
+// The h0 that aims `problem` at about `nodes` nodes (N scales as 1 / h0^2).
+double h0_for_node_count(const Problem& problem, double nodes);
+
+}  // namespace meshd
