@@ -1,0 +1,48 @@
+// A small fixed pool of worker threads for data-parallel loops over index ranges.
+//
+// Work is cut into chunks of a fixed size, independent of the number of threads, so that a
+// reduction that adds per-chunk partial results in chunk order gives the same bits on any
+// machine: the CPU engine stays deterministic for a given request and seed.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace meshd {
+
+class ThreadPool {
+ public:
+  // threads = 0: one per hardware thread.
+  explicit ThreadPool(unsigned threads = 0);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  unsigned size() const { return static_cast<unsigned>(workers_.size()) + 1; }
+
+  // Calls fn(chunk, begin, end) for consecutive chunks of [0, n) of `chunk` indices each, in
+  // parallel; returns when all are done. Small ranges run on the caller's thread.
+  void for_chunks(size_t n, size_t chunk, const std::function<void(size_t, size_t, size_t)>& fn);
+
+  static size_t chunk_count(size_t n, size_t chunk) { return (n + chunk - 1) / chunk; }
+
+ private:
+  void worker_loop();
+  // Takes chunks until none are left; `lock` holds mutex_ on entry and on return.
+  void run_chunks(std::unique_lock<std::mutex>& lock);
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  const std::function<void(size_t, size_t, size_t)>* job_ = nullptr;
+  size_t n_ = 0, chunk_ = 1, next_ = 0, chunks_left_ = 0;
+  unsigned generation_ = 0;
+  bool stop_ = false;
+};
+
+}  // namespace meshd

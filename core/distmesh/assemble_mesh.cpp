@@ -1,0 +1,56 @@
+#include "core/distmesh/assemble_mesh.h"
+
+#include <map>
+#include <string>
+
+#include "core/geometry/sdf_eval.cuh"
+#include "core/mesh/boundary.h"
+
+namespace meshd {
+
+Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& points,
+                   const std::vector<std::array<int32_t, 3>>& triangles) {
+  Mesh mesh;
+  std::vector<int32_t> new_index(points.size(), -1);
+  for (const auto& t : triangles)
+    for (int32_t v : t) new_index[v] = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (new_index[i] < 0) continue;
+    new_index[i] = static_cast<int32_t>(mesh.points.size());
+    mesh.points.push_back(points[i]);
+  }
+  mesh.triangles.reserve(triangles.size());
+  for (const auto& t : triangles) {
+    std::array<int32_t, 3> u{new_index[t[0]], new_index[t[1]], new_index[t[2]]};
+    const Vec2 a = mesh.points[u[0]], b = mesh.points[u[1]], c = mesh.points[u[2]];
+    if (cross(b - a, c - a) < 0.0) std::swap(u[1], u[2]);
+    mesh.triangles.push_back(u);
+  }
+
+  mesh.boundary_edges = boundary_edges_of(mesh.triangles);
+  // The primitive that wins the min / max at an edge's midpoint is the boundary it lies on.
+  std::map<std::string, int32_t> group_of_name;
+  std::vector<int32_t> group_of_primitive(problem.geometry.primitives.size(), -1);
+  std::vector<int32_t> owner_tag(problem.geometry.primitives.size(), -1);
+  mesh.boundary_tags.reserve(mesh.boundary_edges.size());
+  for (const auto& e : mesh.boundary_edges) {
+    const Vec2 mid = 0.5 * (mesh.points[e[0]] + mesh.points[e[1]]);
+    int owner = 0;
+    eval_sdf_range(problem.geometry.view(), 0, static_cast<uint32_t>(problem.geometry.code.size()),
+                   mid, &owner);
+    owner_tag[owner] = 0;
+    mesh.boundary_tags.push_back(owner);
+  }
+  // Number groups in primitive order so that tags do not depend on the edge order.
+  for (size_t prim = 0; prim < owner_tag.size(); ++prim) {
+    if (owner_tag[prim] < 0) continue;
+    const std::string& name = problem.geometry.primitives[prim].name;
+    auto [it, inserted] = group_of_name.emplace(name, static_cast<int32_t>(mesh.boundary_names.size()));
+    if (inserted) mesh.boundary_names.push_back(name);
+    group_of_primitive[prim] = it->second;
+  }
+  for (int32_t& tag : mesh.boundary_tags) tag = group_of_primitive[tag];
+  return mesh;
+}
+
+}  // namespace meshd

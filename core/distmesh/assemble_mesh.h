@@ -1,0 +1,19 @@
+// Turns an engine's final points and triangles into a Mesh: unused nodes dropped, boundary
+// edges found and tagged by the primitive they lie on (the boundary groups of the output files).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/distmesh/compiled_problem.h"
+#include "core/mesh/mesh.h"
+
+namespace meshd {
+
+// points: #N by 2; triangles: #M by 3 (either orientation; made counter-clockwise).
+// Boundary groups are the primitives' names, in primitive order, that own at least one edge.
+Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& points,
+                   const std::vector<std::array<int32_t, 3>>& triangles);
+
+}  // namespace meshd

@@ -1,0 +1,82 @@
+#include "core/distmesh/compiled_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/common/error.h"
+#include "core/geometry/bounds.h"
+#include "core/geometry/compile.h"
+#include "core/geometry/sdf_eval.cuh"
+
+namespace meshd {
+namespace {
+
+double box_diameter(const Box& b) { return std::hypot(b.max.x - b.min.x, b.max.y - b.min.y); }
+
+// Appends p unless a point within `tol` is already there.
+void add_unique(std::vector<Vec2>& points, Vec2 p, double tol) {
+  for (Vec2 q : points)
+    if (norm(p - q) <= tol) return;
+  points.push_back(p);
+}
+
+}  // namespace
+
+std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
+  // Corners of the final boundary evaluate to 0 up to rounding in the primitives' parameters.
+  const double tol = 1e-10 * box_diameter(bbox);
+  std::vector<Vec2> corners;
+  for (const PrimitiveInfo& prim : geometry.primitives) {
+    for (size_t i = 0; i + 1 < prim.corners.size(); i += 2) {
+      const Vec2 v{prim.corners[i], prim.corners[i + 1]};
+      if (std::fabs(eval_sdf(geometry.view(), v)) <= tol) add_unique(corners, v, tol);
+    }
+  }
+  return corners;
+}
+
+CompiledProblem compile_problem(const Problem& problem) {
+  CompiledProblem out;
+  out.geometry = compile_geometry(problem.geometry);
+  out.size = compile_size_field(problem.size);
+  out.h0 = problem.h0;
+  out.params = problem.params;
+  out.seed = problem.seed;
+
+  const Box derived = program_bounds(out.geometry);
+  if (is_empty(derived)) throw_invalid("geometry", "the domain is empty (its intersection is empty)");
+  if (problem.bbox) {
+    out.bbox = *problem.bbox;
+  } else if (!is_bounded(derived)) {
+    throw_invalid("bbox", "required: the geometry is unbounded (a half-plane is not cut off)");
+  } else {
+    out.bbox = derived;
+  }
+  if (is_bounded(derived)) {
+    // The initial points only need the part of the box that the domain can occupy.
+    out.bbox = {{std::max(out.bbox.min.x, derived.min.x), std::max(out.bbox.min.y, derived.min.y)},
+                {std::min(out.bbox.max.x, derived.max.x), std::min(out.bbox.max.y, derived.max.y)}};
+    if (is_empty(out.bbox)) throw_invalid("bbox", "does not overlap the geometry");
+  }
+
+  const double geps = problem.params.geps * problem.h0;
+  const double tol = 1e-10 * box_diameter(out.bbox);
+  for (size_t i = 0; i < problem.fixed_points.size(); ++i) {
+    const Vec2 p = problem.fixed_points[i];
+    const double d = eval_sdf(out.geometry.view(), p);
+    if (d > geps) {
+      std::ostringstream msg;
+      msg << "must lie inside the domain or on its boundary (distance " << d << " > "
+          << geps << " = geps * h0)";
+      throw_invalid("fixed_points[" + std::to_string(i) + "]", msg.str());
+    }
+    add_unique(out.fixed_points, p, tol);
+  }
+  if (problem.auto_corners) {
+    for (Vec2 c : boundary_corners(out.geometry, out.bbox)) add_unique(out.fixed_points, c, tol);
+  }
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,55 @@
+// The CPU engine: DistMesh's steps over all cores, CGAL for the triangulation.
+//
+// Invariants between calls: p_ holds the nodes, fixed ones first (indices < nfix_); after a
+// retriangulation, triangles_ are the Delaunay triangles whose centroid lies inside, bars_ their
+// unique edges, and bar_csr_ lists for each node the bars that end there, so that each node sums
+// its forces alone: no atomics, and the same bits for any number of threads.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/thread_pool.h"
+#include "core/distmesh/engine.h"
+
+namespace meshd {
+
+class CpuEngine final : public Engine {
+ public:
+  explicit CpuEngine(ThreadPool& pool) : pool_(pool) {}
+
+  const char* name() const override { return "cpu"; }
+  int64_t initialize(const CompiledProblem& problem) override;
+  TopologyStats retriangulate(bool full) override;
+  int64_t remove_crowded_points() override;
+  StepResult move_points() override;
+  void remove_points(const std::vector<int32_t>& indices) override;
+  int64_t node_count() const override { return static_cast<int64_t>(p_.size()); }
+  void read_points(std::vector<Vec2>& points) override { points = p_; }
+  void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override {
+    triangles = triangles_;
+  }
+
+ private:
+  // Step 4: bar lengths L, sizes at the midpoints, and the factor that turns sizes into target
+  // lengths (L0 = hbar * scale). Fills bar_length_ and bar_size_.
+  double measure_bars();
+  void build_bar_csr();
+  void keep_points(const std::vector<char>& remove);
+
+  ThreadPool& pool_;
+  const CompiledProblem* problem_ = nullptr;
+  std::vector<Vec2> p_;      // #N by 2
+  std::vector<Vec2> pold_;   // #N by 2, positions at the last triangulation
+  int64_t nfix_ = 0;
+  std::vector<std::array<int32_t, 3>> triangles_;  // #M by 3
+  std::vector<std::array<int32_t, 2>> bars_;       // #B by 2
+  std::vector<double> bar_length_;                 // #B
+  std::vector<double> bar_size_;                   // #B, h at the midpoint
+  std::vector<Vec2> bar_force_;                    // #B, force on bars_[b][0]
+  std::vector<int32_t> csr_offset_;                // #N + 1
+  std::vector<int32_t> csr_entry_;                 // #2B: bar * 2 + (0 first end, 1 second)
+};
+
+}  // namespace meshd

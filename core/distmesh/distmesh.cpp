@@ -1,0 +1,160 @@
+#include "core/distmesh/distmesh.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/common/error.h"
+#include "core/distmesh/assemble_mesh.h"
+#include "core/distmesh/cleanup.h"
+#include "core/distmesh/optimize_worst.h"
+
+namespace meshd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// One run of the loop: the counters, the timers and the observer calls in one place.
+class Loop {
+ public:
+  Loop(const CompiledProblem& problem, Engine& engine, Observer* observer,
+       const std::atomic<bool>* cancel)
+      : problem_(problem), engine_(engine), observer_(observer), cancel_(cancel) {}
+
+  MeshResult run() {
+    const auto t0 = Clock::now();
+    MeshResult result;
+    RunStats& s = stats_;
+
+    // 1-2. Initial points.
+    auto t = Clock::now();
+    engine_.initialize(problem_);
+    s.t_initial += seconds_since(t);
+    triangulate(true);
+
+    // 3-8. Relax until no interior node moves more than dptol * h0.
+    s.converged = relax(problem_.params.max_iterations, true, s.iterations);
+
+    // Boundary clean-up: remove the middle node of boundary slivers, then relax again.
+    if (problem_.params.cleanup) {
+      t = Clock::now();
+      for (int round = 0; round < kCleanupRounds; ++round) {
+        engine_.read_points(points_);
+        engine_.read_triangles(triangles_);
+        const auto victims = cleanup_victims(problem_, points_, triangles_);
+        if (victims.empty()) break;
+        engine_.remove_points(victims);
+        s.cleanup_removed += static_cast<int64_t>(victims.size());
+        triangulate(true);
+        relax(kCleanupIterations, false, s.cleanup_iterations);
+      }
+      s.t_cleanup += seconds_since(t);
+    }
+
+    // The points moved a little since the last triangulation: triangulate once more so that the
+    // result is the Delaunay mesh of its own nodes.
+    triangulate(false);
+    engine_.read_points(points_);
+    engine_.read_triangles(triangles_);
+    if (problem_.params.cleanup) {
+      t = Clock::now();
+      s.optimized_moves = optimize_worst_elements(problem_, points_, triangles_);
+      s.t_cleanup += seconds_since(t);
+    }
+    result.mesh = assemble_mesh(problem_, points_, triangles_);
+    result.quality = summarize_quality(result.mesh);
+    s.t_total = seconds_since(t0);
+    result.stats = s;
+    return result;
+  }
+
+ private:
+  static constexpr int kCleanupRounds = 3;
+  static constexpr int kCleanupIterations = 200;
+
+  void triangulate(bool full) {
+    const auto t = Clock::now();
+    const TopologyStats topo = engine_.retriangulate(full);
+    stats_.t_triangulation += seconds_since(t);
+    ++stats_.retriangulations;
+    if (topo.full) ++stats_.full_triangulations;
+    stats_.flips += topo.flips;
+    drift_ = 0.0;
+    ++topology_version_;
+  }
+
+  // Steps 3-8 for at most `max_iterations`; adds the iterations run to `iterations`. Returns
+  // whether the termination test passed.
+  bool relax(int max_iterations, bool density_control, int& iterations) {
+    const Params& prm = problem_.params;
+    for (int it = 1; it <= max_iterations; ++it) {
+      if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
+        throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
+      ++iterations;
+      // 3. Retriangulate once some node drifted ttol * h0 from where it was triangulated.
+      if (drift_ > prm.ttol) triangulate(false);
+      // 6. Density control.
+      if (density_control && prm.density_control_interval > 0 &&
+          it % prm.density_control_interval == 0) {
+        const auto t = Clock::now();
+        const int64_t removed = engine_.remove_crowded_points();
+        stats_.t_density += seconds_since(t);
+        if (removed > 0) {
+          stats_.density_removed += removed;
+          triangulate(true);
+          continue;
+        }
+      }
+      // 4-5, 7-8. Forces, Euler step, projection.
+      const auto t = Clock::now();
+      const StepResult step = engine_.move_points();
+      stats_.t_forces += seconds_since(t);
+      drift_ = step.max_drift;
+      report(iterations, step.max_move);
+      if (step.max_move < prm.dptol) return true;
+    }
+    return false;
+  }
+
+  void report(int iteration, double max_move) {
+    if (observer_ == nullptr) return;
+    Progress p;
+    p.iteration = iteration;
+    p.max_move = max_move;
+    p.retriangulations = stats_.retriangulations;
+    p.flips = stats_.flips;
+    p.nodes = engine_.node_count();
+    p.elapsed_s = seconds_since(start_);
+    observer_->on_progress(p);
+    if (!observer_->wants_snapshot(iteration)) return;
+    engine_.read_points(points_);
+    const bool changed = topology_version_ != snapshot_version_;
+    if (changed) engine_.read_triangles(triangles_);
+    snapshot_version_ = topology_version_;
+    observer_->on_snapshot(iteration, points_, changed ? &triangles_ : nullptr);
+  }
+
+  const CompiledProblem& problem_;
+  Engine& engine_;
+  Observer* observer_;
+  const std::atomic<bool>* cancel_;
+  const Clock::time_point start_ = Clock::now();
+  RunStats stats_;
+  double drift_ = 0.0;
+  int64_t topology_version_ = 0;
+  int64_t snapshot_version_ = -1;
+  std::vector<Vec2> points_;
+  std::vector<std::array<int32_t, 3>> triangles_;
+};
+
+}  // namespace
+
+MeshResult generate_mesh(const CompiledProblem& problem, Engine& engine, Observer* observer,
+                         const std::atomic<bool>* cancel) {
+  return Loop(problem, engine, observer, cancel).run();
+}
+
+}  // namespace meshd

@@ -1,0 +1,40 @@
+// The DistMesh loop (Persson & Strang, distmesh2d.m), written once over the Engine interface.
+#pragma once
+
+#include <atomic>
+
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/engine.h"
+#include "core/distmesh/observer.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/quality.h"
+
+namespace meshd {
+
+struct RunStats {
+  int iterations = 0;          // of the main loop, clean-up relaxation not included
+  bool converged = false;      // false: stopped at max_iterations
+  int retriangulations = 0;    // all triangulations, the first included
+  int full_triangulations = 0;
+  int64_t flips = 0;
+  int64_t density_removed = 0;  // points removed by density control
+  int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
+  int cleanup_iterations = 0;
+  int64_t optimized_moves = 0;  // node moves of the worst-element optimisation
+  // Seconds per phase; total is the wall time of generate_mesh.
+  double t_initial = 0, t_triangulation = 0, t_forces = 0, t_density = 0, t_cleanup = 0,
+         t_total = 0;
+};
+
+struct MeshResult {
+  Mesh mesh;
+  RunStats stats;
+  QualityStats quality;
+};
+
+// Meshes `problem` on `engine`. Reports through `observer` (may be null) and stops with
+// Error(kCancelled) within one iteration once `cancel` (may be null) is set.
+MeshResult generate_mesh(const CompiledProblem& problem, Engine& engine, Observer* observer,
+                         const std::atomic<bool>* cancel);
+
+}  // namespace meshd

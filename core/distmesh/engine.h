@@ -1,0 +1,53 @@
+// The interface between the DistMesh loop (written once, in distmesh.cpp) and the machines that
+// run its steps: the CPU engine here, the GPU engine in kernels/. An engine owns the points,
+// triangles and bars of one job at a time; the loop sees only scalars and asks for copies when
+// it needs them (snapshots, clean-up, the result).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/vec2.h"
+#include "core/distmesh/compiled_problem.h"
+
+namespace meshd {
+
+struct StepResult {
+  double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
+  double max_drift = 0.0;  // largest |p - p_at_last_triangulation| after the step, / h0
+};
+
+struct TopologyStats {
+  int64_t triangles = 0;  // kept inside the domain
+  int64_t bars = 0;
+  int64_t flips = 0;      // edge flips of a repair
+  bool full = true;       // a full triangulation rather than a repair
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual const char* name() const = 0;
+
+  // Steps 1-2: loads `problem` (kept by reference until the next call) and places the initial
+  // points, fixed points first. Returns the node count.
+  virtual int64_t initialize(const CompiledProblem& problem) = 0;
+  // Step 3: Delaunay triangulation (from scratch when `full`, otherwise the engine may repair
+  // the previous one), the centroid filter and the bar list.
+  virtual TopologyStats retriangulate(bool full) = 0;
+  // Steps 4 and 6: removes both ends (unless fixed) of every bar with L0 > 2 L. Returns how many
+  // points went; the caller must retriangulate in full when any did.
+  virtual int64_t remove_crowded_points() = 0;
+  // Steps 4, 5, 7, 8: bar forces, Euler step, projection onto the boundary; also measures
+  // step 3's test for the next iteration (the drift since the last triangulation).
+  virtual StepResult move_points() = 0;
+  // Removes the given (non-fixed) nodes; the caller retriangulates in full afterwards.
+  virtual void remove_points(const std::vector<int32_t>& indices) = 0;
+
+  virtual int64_t node_count() const = 0;
+  virtual void read_points(std::vector<Vec2>& points) = 0;
+  virtual void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) = 0;
+};
+
+}  // namespace meshd

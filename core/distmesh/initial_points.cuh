@@ -1,0 +1,53 @@
+// Step 1-2 of DistMesh, per grid point, shared by the CPU and GPU engines so that both start
+// from the same points: an equilateral grid over the box (rows h0 * sqrt(3)/2 apart, every
+// other row shifted by h0/2), points with fd < geps kept, then each kept with probability
+// (h_min / h(p))^2 through a counter-based hash of (seed, grid index), which needs no shared
+// random state and gives the same draw wherever it is evaluated.
+#pragma once
+
+#include <cstdint>
+
+#include "core/common/hd.h"
+#include "core/common/vec2.h"
+
+namespace meshd {
+
+struct InitialGrid {
+  Vec2 origin;
+  double h0;
+  int64_t nx;  // points per row
+  int64_t ny;  // rows
+};
+
+MESHD_HD inline InitialGrid make_initial_grid(Box bbox, double h0) {
+  const double dy = h0 * 0.8660254037844386;  // sqrt(3)/2
+  InitialGrid g;
+  g.origin = bbox.min;
+  g.h0 = h0;
+  g.nx = static_cast<int64_t>(floor((bbox.max.x - bbox.min.x) / h0)) + 1;
+  g.ny = static_cast<int64_t>(floor((bbox.max.y - bbox.min.y) / dy)) + 1;
+  return g;
+}
+
+MESHD_HD inline Vec2 initial_grid_point(const InitialGrid& g, int64_t index) {
+  const int64_t j = index / g.nx, i = index % g.nx;
+  return {g.origin.x + g.h0 * (static_cast<double>(i) + ((j & 1) ? 0.5 : 0.0)),
+          g.origin.y + g.h0 * 0.8660254037844386 * static_cast<double>(j)};
+}
+
+// A uniform number in [0, 1) from (seed, index): splitmix64's finaliser.
+MESHD_HD inline double hash_uniform(uint64_t seed, uint64_t index) {
+  uint64_t z = seed + 0x9E3779B97F4A7C15ull * (index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+
+// The rejection test of step 2: keep with probability r0 / max(r0), r0 = 1 / h^2.
+MESHD_HD inline bool keep_by_size(uint64_t seed, int64_t index, double h, double h_min) {
+  const double ratio = h_min / h;
+  return hash_uniform(seed, static_cast<uint64_t>(index)) < ratio * ratio;
+}
+
+}  // namespace meshd

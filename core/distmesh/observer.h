@@ -1,0 +1,34 @@
+// How a running DistMesh job reports to whoever started it (the service, the benchmark).
+// Every method is called on the job's thread between iterations; keep them cheap.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/vec2.h"
+
+namespace meshd {
+
+struct Progress {
+  int iteration = 0;
+  double max_move = 0.0;  // largest interior move of the last step, relative to h0
+  int retriangulations = 0;
+  int64_t flips = 0;      // edge flips of topology repairs so far
+  int64_t nodes = 0;
+  double elapsed_s = 0.0;
+};
+
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void on_progress(const Progress&) {}
+  // Asked after each iteration; true means on_snapshot follows.
+  virtual bool wants_snapshot(int /*iteration*/) { return false; }
+  // points: #N by 2. triangles: #M by 3, or null when the topology did not change since the
+  // last snapshot.
+  virtual void on_snapshot(int /*iteration*/, const std::vector<Vec2>& /*points*/,
+                           const std::vector<std::array<int32_t, 3>>* /*triangles*/) {}
+};
+
+}  // namespace meshd

@@ -1,0 +1,167 @@
+#include "core/distmesh/optimize_worst.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/geometry/sdf_eval.cuh"
+#include "core/mesh/boundary.h"
+#include "core/mesh/quality.h"
+
+namespace meshd {
+namespace {
+
+constexpr int kPasses = 8;
+constexpr int kStepHalvings = 6;
+
+// Triangles around each node, as a CSR.
+struct Stars {
+  std::vector<int32_t> offset;  // #N + 1
+  std::vector<int32_t> tri;     // #3M
+};
+
+Stars build_stars(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
+  Stars s;
+  s.offset.assign(n + 1, 0);
+  for (const auto& t : triangles)
+    for (int32_t v : t) ++s.offset[v + 1];
+  for (size_t i = 0; i < n; ++i) s.offset[i + 1] += s.offset[i];
+  s.tri.resize(3 * triangles.size());
+  std::vector<int32_t> fill(s.offset.begin(), s.offset.end() - 1);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int32_t v : triangles[t]) s.tri[fill[v]++] = static_cast<int32_t>(t);
+  return s;
+}
+
+class Optimizer {
+ public:
+  Optimizer(const CompiledProblem& problem, std::vector<Vec2>& points,
+            const std::vector<std::array<int32_t, 3>>& triangles)
+      : fd_(problem.geometry.view()),
+        deps_(problem.params.deps * problem.h0),
+        nfix_(static_cast<int32_t>(problem.fixed_points.size())),
+        p_(points),
+        t_(triangles),
+        stars_(build_stars(points.size(), triangles)),
+        on_boundary_(points.size(), 0) {
+    for (const auto& e : boundary_edges_of(triangles)) on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
+  }
+
+  int64_t run() {
+    int64_t moves = 0;
+    for (int pass = 0; pass < kPasses; ++pass) {
+      int64_t pass_moves = 0;
+      for (size_t t = 0; t < t_.size(); ++t) {
+        if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) continue;
+        for (int32_t v : t_[t])
+          if (v >= nfix_ && optimize_node(v)) ++pass_moves;
+      }
+      moves += pass_moves;
+      if (pass_moves == 0) break;
+    }
+    return moves;
+  }
+
+ private:
+  double quality(int32_t t) const {
+    const auto& tri = t_[t];
+    const Vec2 a = p_[tri[0]], b = p_[tri[1]], c = p_[tri[2]];
+    // Inverted or flat triangles rank below every valid one.
+    if (cross(b - a, c - a) <= 0.0) return -1.0;
+    return radius_ratio(a, b, c);
+  }
+
+  // Worst quality in v's star with v at position x.
+  double star_quality(int32_t v, Vec2 x) {
+    const Vec2 saved = p_[v];
+    p_[v] = x;
+    double worst = INFINITY;
+    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k)
+      worst = std::min(worst, quality(stars_.tri[k]));
+    p_[v] = saved;
+    return worst;
+  }
+
+  Vec2 gradient(Vec2 x, double d) const {
+    return {(eval_sdf(fd_, {x.x + deps_, x.y}) - d) / deps_,
+            (eval_sdf(fd_, {x.x, x.y + deps_}) - d) / deps_};
+  }
+
+  Vec2 project_to_boundary(Vec2 x) const {
+    for (int it = 0; it < 3; ++it) {
+      const double d = eval_sdf(fd_, x);
+      const Vec2 g = gradient(x, d);
+      const double g2 = dot(g, g);
+      if (g2 <= 0.0) break;
+      x = x - (d / g2) * g;
+    }
+    return x;
+  }
+
+  double mean_star_edge(int32_t v) const {
+    double sum = 0.0;
+    int count = 0;
+    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k) {
+      for (int32_t u : t_[stars_.tri[k]]) {
+        if (u == v) continue;
+        sum += norm(p_[u] - p_[v]);
+        ++count;
+      }
+    }
+    return count > 0 ? sum / count : 0.0;
+  }
+
+  // Pattern search from v's position; returns whether v moved.
+  bool optimize_node(int32_t v) {
+    const bool boundary = on_boundary_[v];
+    double best = star_quality(v, p_[v]);
+    const Vec2 start = p_[v];
+    double step = 0.25 * mean_star_edge(v);
+    for (int h = 0; h < kStepHalvings; ++h, step *= 0.5) {
+      for (bool improved = true; improved;) {
+        improved = false;
+        Vec2 dirs[8];
+        int n_dirs = 0;
+        if (boundary) {
+          const Vec2 g = gradient(p_[v], eval_sdf(fd_, p_[v]));
+          const double len = norm(g);
+          if (len <= 0.0) return false;
+          dirs[n_dirs++] = {-g.y / len, g.x / len};
+          dirs[n_dirs++] = {g.y / len, -g.x / len};
+        } else {
+          for (int k = 0; k < 8; ++k) dirs[n_dirs++] = {std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)};
+        }
+        Vec2 best_x = p_[v];
+        for (int k = 0; k < n_dirs; ++k) {
+          Vec2 x = p_[v] + step * dirs[k];
+          if (boundary) x = project_to_boundary(x);
+          else if (eval_sdf(fd_, x) >= 0.0) continue;
+          const double q = star_quality(v, x);
+          if (q > best) {
+            best = q;
+            best_x = x;
+            improved = true;
+          }
+        }
+        p_[v] = best_x;
+      }
+    }
+    return !(p_[v] == start);
+  }
+
+  ProgramView fd_;
+  double deps_;
+  int32_t nfix_;
+  std::vector<Vec2>& p_;
+  const std::vector<std::array<int32_t, 3>>& t_;
+  Stars stars_;
+  std::vector<char> on_boundary_;
+};
+
+}  // namespace
+
+int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
+                                const std::vector<std::array<int32_t, 3>>& triangles) {
+  return Optimizer(problem, points, triangles).run();
+}
+
+}  // namespace meshd

@@ -1,0 +1,28 @@
+// The last step of the clean-up: local optimisation of the worst elements.
+//
+// DistMesh's forces equalise bar lengths, which is right in the interior and wrong at a sharp
+// corner, where the single triangle at the corner needs two equal legs along the two sides.
+// Here each node of a triangle under a quality target moves, by a pattern search, to where the
+// worst triangle around it is best: interior nodes in the plane, boundary nodes along the
+// boundary (re-projected onto it). A move is taken only when it raises the minimum quality of
+// the node's star and keeps every triangle there positively oriented, so the mesh stays valid,
+// the worst element can only improve, and the rest of the mesh is untouched.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/distmesh/compiled_problem.h"
+
+namespace meshd {
+
+// Triangles under this radius ratio have their nodes optimised.
+constexpr double kOptimizeBelowQuality = 0.8;
+
+// points: #N by 2, fixed nodes first (never moved); triangles: #M by 3, counter-clockwise.
+// Returns the number of node moves made.
+int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
+                                const std::vector<std::array<int32_t, 3>>& triangles);
+
+}  // namespace meshd

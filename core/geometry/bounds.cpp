@@ -1,0 +1,68 @@
+#include "core/geometry/bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace meshd {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const Box kWholePlane{{-kInf, -kInf}, {kInf, kInf}};
+
+Box primitive_box(Op op, const double* q) {
+  switch (op) {
+    case Op::kCircle:
+      return {{q[0] - q[2], q[1] - q[2]}, {q[0] + q[2], q[1] + q[2]}};
+    case Op::kBox:
+    case Op::kEllipse: {
+      // Extent of a rotated box (|c| hx + |s| hy) or ellipse (sqrt((c a)^2 + (s b)^2)).
+      const double c = q[4], s = q[5];
+      const double ex = op == Op::kBox ? std::fabs(c) * q[2] + std::fabs(s) * q[3]
+                                       : std::hypot(c * q[2], s * q[3]);
+      const double ey = op == Op::kBox ? std::fabs(s) * q[2] + std::fabs(c) * q[3]
+                                       : std::hypot(s * q[2], c * q[3]);
+      return {{q[0] - ex, q[1] - ey}, {q[0] + ex, q[1] + ey}};
+    }
+    case Op::kPolygon: {
+      Box b{{kInf, kInf}, {-kInf, -kInf}};
+      const int n = static_cast<int>(q[0]);
+      for (int i = 0; i < n; ++i) {
+        b.min = {std::min(b.min.x, q[1 + 2 * i]), std::min(b.min.y, q[2 + 2 * i])};
+        b.max = {std::max(b.max.x, q[1 + 2 * i]), std::max(b.max.y, q[2 + 2 * i])};
+      }
+      return b;
+    }
+    default:  // a half-plane is unbounded
+      return kWholePlane;
+  }
+}
+
+}  // namespace
+
+Box program_bounds(const Program& program, uint32_t begin, uint32_t end) {
+  std::vector<Box> stack;
+  for (uint32_t i = begin; i < end; ++i) {
+    const Instruction& ins = program.code[i];
+    if (ins.op == Op::kNegate) {
+      stack.back() = kWholePlane;
+    } else if (ins.op == Op::kMin || ins.op == Op::kMax) {
+      const Box b = stack.back();
+      stack.pop_back();
+      Box& a = stack.back();
+      if (ins.op == Op::kMin) {
+        a = {{std::min(a.min.x, b.min.x), std::min(a.min.y, b.min.y)},
+             {std::max(a.max.x, b.max.x), std::max(a.max.y, b.max.y)}};
+      } else {
+        a = {{std::max(a.min.x, b.min.x), std::max(a.min.y, b.min.y)},
+             {std::min(a.max.x, b.max.x), std::min(a.max.y, b.max.y)}};
+      }
+    } else {
+      stack.push_back(primitive_box(ins.op, program.params.data() + ins.operand));
+    }
+  }
+  return stack.empty() ? Box{{kInf, kInf}, {-kInf, -kInf}} : stack.back();
+}
+
+}  // namespace meshd

@@ -1,0 +1,144 @@
+#include "core/geometry/compile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <type_traits>
+
+#include "core/common/error.h"
+
+namespace meshd {
+namespace {
+
+// Emits postfix code for one tree, keeping track of how deep the value stack gets.
+class Emitter {
+ public:
+  explicit Emitter(Program& program) : program_(program) {}
+
+  // Emits `shape` under the accumulated transform; returns the stack slots it needs.
+  int emit(const Shape& shape, const Similarity& t) {
+    const int need = std::visit([&](const auto& node) { return emit_node(shape, node, t); },
+                                shape.node);
+    if (need > kMaxProgramStack) {
+      throw_invalid(shape.path, "the tree is too deep to evaluate (needs " + std::to_string(need) +
+                                    " stack slots, at most " +
+                                    std::to_string(kMaxProgramStack) + ")");
+    }
+    return need;
+  }
+
+ private:
+  int push_primitive(const Shape& shape, Op op, std::initializer_list<double> params,
+                     const char* kind, std::vector<double> corners = {}) {
+    PrimitiveInfo info;
+    info.name = shape.name.empty() ? kind + std::to_string(++default_index_[kind]) : shape.name;
+    info.path = shape.path;
+    info.corners = std::move(corners);
+    const auto offset = static_cast<uint32_t>(program_.params.size());
+    program_.params.insert(program_.params.end(), params);
+    program_.code.push_back({op, offset, static_cast<int32_t>(program_.primitives.size())});
+    program_.primitives.push_back(std::move(info));
+    return 1;
+  }
+
+  int emit_node(const Shape& s, const Circle& c, const Similarity& t) {
+    const Vec2 center = apply(t, c.center);
+    return push_primitive(s, Op::kCircle, {center.x, center.y, t.scale * c.radius}, "circle");
+  }
+
+  int emit_node(const Shape& s, const Rectangle& r, const Similarity& t) {
+    const Vec2 center = apply(t, 0.5 * (r.min + r.max));
+    const double hx = 0.5 * t.scale * (r.max.x - r.min.x), hy = 0.5 * t.scale * (r.max.y - r.min.y);
+    std::vector<double> corners;
+    for (Vec2 v : {r.min, Vec2{r.max.x, r.min.y}, r.max, Vec2{r.min.x, r.max.y}}) {
+      const Vec2 w = apply(t, v);
+      corners.insert(corners.end(), {w.x, w.y});
+    }
+    return push_primitive(s, Op::kBox,
+                          {center.x, center.y, hx, hy, std::cos(t.angle), std::sin(t.angle)},
+                          "rectangle", std::move(corners));
+  }
+
+  int emit_node(const Shape& s, const Ellipse& e, const Similarity& t) {
+    const Vec2 center = apply(t, e.center);
+    return push_primitive(s, Op::kEllipse,
+                          {center.x, center.y, t.scale * e.semi_axis_x, t.scale * e.semi_axis_y,
+                           std::cos(t.angle), std::sin(t.angle)},
+                          "ellipse");
+  }
+
+  int emit_node(const Shape& s, const HalfPlane& h, const Similarity& t) {
+    // {n.p <= c} maps to {R n . p' <= scale c + R n . offset}; store the unit normal.
+    const double len = norm(h.normal);
+    const double cs = std::cos(t.angle), sn = std::sin(t.angle);
+    const Vec2 n{(cs * h.normal.x - sn * h.normal.y) / len, (sn * h.normal.x + cs * h.normal.y) / len};
+    const double c = t.scale * h.offset / len + dot(n, t.offset);
+    return push_primitive(s, Op::kHalfPlane, {n.x, n.y, c}, "half_plane");
+  }
+
+  int emit_node(const Shape& s, const Polygon& poly, const Similarity& t) {
+    const auto offset = static_cast<uint32_t>(program_.params.size());
+    std::vector<double> corners;
+    corners.reserve(2 * poly.vertices.size());
+    for (Vec2 v : poly.vertices) {
+      const Vec2 w = apply(t, v);
+      corners.insert(corners.end(), {w.x, w.y});
+    }
+    PrimitiveInfo info;
+    info.name = s.name.empty() ? "polygon" + std::to_string(++default_index_["polygon"]) : s.name;
+    info.path = s.path;
+    program_.params.push_back(static_cast<double>(poly.vertices.size()));
+    program_.params.insert(program_.params.end(), corners.begin(), corners.end());
+    info.corners = std::move(corners);
+    program_.code.push_back({Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size())});
+    program_.primitives.push_back(std::move(info));
+    return 1;
+  }
+
+  // Left fold: a, b, op, c, op, ... keeps one accumulated value on the stack.
+  int emit_node(const Shape&, const Csg& csg, const Similarity& t) {
+    int need = 0;
+    for (size_t i = 0; i < csg.operands.size(); ++i) {
+      need = std::max(need, (i == 0 ? 0 : 1) + emit(csg.operands[i], t));
+      if (i == 0) continue;
+      if (csg.op == CsgOp::kDifference) program_.code.push_back({Op::kNegate, 0, -1});
+      const Op op = csg.op == CsgOp::kUnion ? Op::kMin : Op::kMax;
+      program_.code.push_back({op, 0, -1});
+    }
+    return need;
+  }
+
+  int emit_node(const Shape&, const Transformed& tr, const Similarity& t) {
+    return emit(tr.operand.at(0), compose(t, tr.transform));
+  }
+
+  Program& program_;
+  std::map<std::string, int> default_index_;
+};
+
+}  // namespace
+
+Program compile_geometry(const Shape& root) {
+  Program program;
+  Emitter(program).emit(root, Similarity{});
+  return program;
+}
+
+SizeProgram compile_size_field(const SizeFieldSpec& spec) {
+  SizeProgram out;
+  Emitter emitter(out.shapes);
+  for (const auto& term : spec.terms) {
+    if (const auto* u = std::get_if<UniformSize>(&term)) {
+      out.terms.push_back({u->value, 0.0, u->value, 0, 0});
+      continue;
+    }
+    const auto& d = std::get<DistanceSize>(term);
+    const auto begin = static_cast<uint32_t>(out.shapes.code.size());
+    emitter.emit(d.shape, Similarity{});
+    const auto end = static_cast<uint32_t>(out.shapes.code.size());
+    out.terms.push_back({d.h_min, d.slope, d.h_max, begin, end});
+  }
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,19 @@
+// Compiles the geometry tree and the size field to flat programs (program.h, size_program.h).
+#pragma once
+
+#include "core/geometry/program.h"
+#include "core/geometry/shape.h"
+#include "core/geometry/size_field.h"
+#include "core/geometry/size_program.h"
+
+namespace meshd {
+
+// The postfix program of `root`, transforms folded into the primitives. Unnamed primitives get
+// "<kind><index>" names (circle1, polygon2, ...). Throws Error(kInvalidArgument) naming the
+// node's path when the tree needs more than kMaxProgramStack values to evaluate.
+Program compile_geometry(const Shape& root);
+
+// The size field's program; each distance term's shape becomes an instruction range.
+SizeProgram compile_size_field(const SizeFieldSpec& spec);
+
+}  // namespace meshd

@@ -1,0 +1,148 @@
+// The one signed-distance evaluator, compiled by g++ for the CPU engine and by nvcc for the GPU
+// engine. Distances are exact for every primitive; CSG combinations use min / max as DistMesh
+// does (exact outside a union, a bound elsewhere).
+#pragma once
+
+#include <cmath>
+
+#include "core/common/hd.h"
+#include "core/common/vec2.h"
+#include "core/geometry/program.h"
+
+namespace meshd {
+
+MESHD_HD inline double sdf_circle(const double* q, Vec2 p) {
+  return hypot(p.x - q[0], p.y - q[1]) - q[2];
+}
+
+// Exact box distance, including the rounded distance field outside its corners.
+MESHD_HD inline double sdf_box(const double* q, Vec2 p) {
+  const double dx = p.x - q[0], dy = p.y - q[1];
+  const double lx = fabs(q[4] * dx + q[5] * dy) - q[2];
+  const double ly = fabs(-q[5] * dx + q[4] * dy) - q[3];
+  const double ox = fmax(lx, 0.0), oy = fmax(ly, 0.0);
+  return hypot(ox, oy) + fmin(fmax(lx, ly), 0.0);
+}
+
+MESHD_HD inline double sdf_half_plane(const double* q, Vec2 p) {
+  return q[0] * p.x + q[1] * p.y - q[2];
+}
+
+// Exact polygon distance: nearest edge, sign from the crossing number (even-odd).
+MESHD_HD inline double sdf_polygon(const double* q, Vec2 p) {
+  const int n = static_cast<int>(q[0]);
+  const double* v = q + 1;
+  double best = INFINITY;
+  bool inside = false;
+  for (int i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 a{v[2 * j], v[2 * j + 1]}, b{v[2 * i], v[2 * i + 1]};
+    const Vec2 e = b - a, w = p - a;
+    const double ee = dot(e, e);
+    const double t = ee > 0.0 ? fmin(fmax(dot(w, e) / ee, 0.0), 1.0) : 0.0;
+    const Vec2 r = w - t * e;
+    best = fmin(best, dot(r, r));
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * e.x / e.y) inside = !inside;
+  }
+  const double d = sqrt(best);
+  return inside ? -d : d;
+}
+
+// Distance from (y0, y1), y >= 0, to the ellipse with semi axes e0 >= e1 > 0 (Eberly's
+// formulation). The closest point satisfies x_i = r_i y_i / (s + r_i); s is the root of the
+// convex, decreasing G below, found by Newton's method kept inside a bracket: it converges
+// monotonically from the left, and bisection takes over whenever a step would leave the bracket.
+MESHD_HD inline double ellipse_distance_quadrant(double e0, double e1, double y0, double y1) {
+  if (y1 > 0.0) {
+    if (y0 > 0.0) {
+      const double z0 = y0 / e0, z1 = y1 / e1;
+      const double g = z0 * z0 + z1 * z1 - 1.0;
+      if (g == 0.0) return 0.0;
+      const double r0 = (e0 / e1) * (e0 / e1);
+      const double n0 = r0 * z0;
+      double lo = z1 - 1.0;                           // G(lo) >= 0
+      double hi = g < 0.0 ? 0.0 : hypot(n0, z1) - 1.0;  // G(hi) <= 0
+      double s = lo;
+      for (int it = 0; it < 100; ++it) {
+        const double a = n0 / (s + r0), b = z1 / (s + 1.0);
+        const double G = a * a + b * b - 1.0;
+        if (G == 0.0) break;
+        if (G > 0.0) lo = s; else hi = s;
+        const double dG = -2.0 * (a * a / (s + r0) + b * b / (s + 1.0));
+        double next = s - G / dG;
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (fabs(next - s) <= 1e-15 * fmax(1.0, fabs(s))) { s = next; break; }
+        s = next;
+      }
+      const double x0 = r0 * y0 / (s + r0), x1 = y1 / (s + 1.0);
+      return hypot(x0 - y0, x1 - y1);
+    }
+    return fabs(y1 - e1);
+  }
+  const double numer0 = e0 * y0, denom0 = e0 * e0 - e1 * e1;
+  if (numer0 < denom0) {
+    const double xde0 = numer0 / denom0;
+    const double x0 = e0 * xde0, x1 = e1 * sqrt(fmax(1.0 - xde0 * xde0, 0.0));
+    return hypot(x0 - y0, x1);
+  }
+  return fabs(y0 - e0);
+}
+
+MESHD_HD inline double sdf_ellipse(const double* q, Vec2 p) {
+  const double dx = p.x - q[0], dy = p.y - q[1];
+  const double lx = q[4] * dx + q[5] * dy, ly = -q[5] * dx + q[4] * dy;
+  const double a = q[2], b = q[3];
+  const bool inside = (lx / a) * (lx / a) + (ly / b) * (ly / b) < 1.0;
+  const double d = a >= b ? ellipse_distance_quadrant(a, b, fabs(lx), fabs(ly))
+                          : ellipse_distance_quadrant(b, a, fabs(ly), fabs(lx));
+  return inside ? -d : d;
+}
+
+MESHD_HD inline double sdf_primitive(Op op, const double* q, Vec2 p) {
+  switch (op) {
+    case Op::kCircle: return sdf_circle(q, p);
+    case Op::kBox: return sdf_box(q, p);
+    case Op::kEllipse: return sdf_ellipse(q, p);
+    case Op::kHalfPlane: return sdf_half_plane(q, p);
+    case Op::kPolygon: return sdf_polygon(q, p);
+    default: return NAN;
+  }
+}
+
+// Signed distance of the program's instructions [begin, end) at p. When `owner` is not null it
+// receives the index of the primitive whose distance the result is (the boundary it is nearest
+// to), which tags boundary edges.
+MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p,
+                                      int* owner = nullptr) {
+  double value[kMaxProgramStack];
+  int who[kMaxProgramStack];
+  int top = -1;
+  for (uint32_t i = begin; i < end; ++i) {
+    const Instruction ins = prog.code[i];
+    switch (ins.op) {
+      case Op::kMin:
+        --top;
+        if (value[top + 1] < value[top]) { value[top] = value[top + 1]; who[top] = who[top + 1]; }
+        break;
+      case Op::kMax:
+        --top;
+        if (value[top + 1] > value[top]) { value[top] = value[top + 1]; who[top] = who[top + 1]; }
+        break;
+      case Op::kNegate:
+        value[top] = -value[top];
+        break;
+      default:
+        ++top;
+        value[top] = sdf_primitive(ins.op, prog.params + ins.operand, p);
+        who[top] = ins.primitive;
+        break;
+    }
+  }
+  if (owner != nullptr) *owner = who[0];
+  return value[0];
+}
+
+MESHD_HD inline double eval_sdf(ProgramView prog, Vec2 p) {
+  return eval_sdf_range(prog, 0, prog.size, p);
+}
+
+}  // namespace meshd
