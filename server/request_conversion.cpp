@@ -1,0 +1,414 @@
+#include "server/request_conversion.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/common/error.h"
+#include "core/distmesh/node_estimate.h"
+#include "core/geometry/polygon_checks.h"
+
+namespace meshd {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Messages: the value as the user wrote it (shortest round-trip text) and the allowed range.
+
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
+std::string got(double v) { return " (got " + num(v) + ")"; }
+
+// An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
+std::string approx(double v) {
+  if (std::isfinite(v) && std::fabs(v) >= 100 && std::fabs(v) < 1e18) {
+    return std::to_string(std::llround(v));
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
+}
+
+std::string at(const std::string& path, const char* field, int index) {
+  return path + "." + field + "[" + std::to_string(index) + "]";
+}
+
+double finite(double v, const std::string& field) {
+  if (!std::isfinite(v)) throw_invalid(field, "must be finite" + got(v));
+  return v;
+}
+
+double positive(double v, const std::string& field) {
+  if (!(std::isfinite(v) && v > 0)) throw_invalid(field, "must be finite and > 0" + got(v));
+  return v;
+}
+
+Vec2 to_vec2(const v1::Vec2& v, const std::string& field) {
+  return {finite(v.x(), field + ".x"), finite(v.y(), field + ".y")};
+}
+
+// A box given by its corners: max above min in both coordinates.
+void check_min_below_max(Vec2 min, Vec2 max, const std::string& field) {
+  if (!(max.x > min.x))
+    throw_invalid(field + ".max.x", "must be > min.x = " + num(min.x) + got(max.x));
+  if (!(max.y > min.y))
+    throw_invalid(field + ".max.y", "must be > min.y = " + num(min.y) + got(max.y));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Names: [A-Za-z0-9_.-]{1,64}.
+
+constexpr size_t kMaxNameLength = 64;
+
+bool name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-' || c == '.';
+}
+
+void check_name(const std::string& name, const std::string& field) {
+  const std::string allowed = "; a name is 1 to 64 letters, digits, '_', '-' or '.'";
+  if (name.size() > kMaxNameLength) {
+    throw_invalid(field, "is " + std::to_string(name.size()) + " characters long" + allowed);
+  }
+  for (size_t i = 0; i < name.size(); ++i) {
+    if (name_char(name[i])) continue;
+    // Printable characters are shown as they are; anything else by its byte value.
+    const auto byte = static_cast<unsigned char>(name[i]);
+    char shown[8];
+    if (byte >= 0x20 && byte < 0x7f) {
+      shown[0] = '\'', shown[1] = name[i], shown[2] = '\'', shown[3] = '\0';
+    } else {
+      std::snprintf(shown, sizeof shown, "0x%02x", byte);
+    }
+    throw_invalid(field,
+                  "character " + std::to_string(i) + " (" + shown + ") is not allowed" + allowed);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The Shape tree. One converter per tree: it counts the tree's nodes against the limit.
+
+class ShapeConverter {
+ public:
+  ShapeConverter(const ConversionLimits& limits, std::string root)
+      : limits_(limits), root_(std::move(root)) {}
+
+  Shape convert(const v1::Shape& shape) { return convert(shape, root_, 1, ""); }
+
+ private:
+  Shape convert(const v1::Shape& in, const std::string& path, int depth,
+                const std::string& inherited_name) {
+    if (depth > limits_.max_tree_depth) {
+      throw_invalid(path, "the tree is deeper than the limit of " +
+                              std::to_string(limits_.max_tree_depth) +
+                              " levels (a lone primitive is 1 level)");
+    }
+    if (++nodes_ > limits_.max_tree_nodes) {
+      throw_invalid(root_, "the tree has more than the limit of " +
+                               std::to_string(limits_.max_tree_nodes) + " shape nodes");
+    }
+    if (!in.name().empty()) check_name(in.name(), path + ".name");
+
+    Shape out;
+    out.path = path;
+    out.name = in.name().empty() ? inherited_name : in.name();
+    const std::string& name = out.name;
+    switch (in.kind_case()) {
+      case v1::Shape::kCircle: {
+        const std::string p = path + ".circle";
+        out.node = Circle{to_vec2(in.circle().center(), p + ".center"),
+                          positive(in.circle().radius(), p + ".radius")};
+        break;
+      }
+      case v1::Shape::kRectangle: {
+        const std::string p = path + ".rectangle";
+        Rectangle r{to_vec2(in.rectangle().min(), p + ".min"),
+                    to_vec2(in.rectangle().max(), p + ".max")};
+        check_min_below_max(r.min, r.max, p);
+        out.node = r;
+        break;
+      }
+      case v1::Shape::kPolygon:
+        out.node = polygon(in.polygon(), path + ".polygon");
+        break;
+      case v1::Shape::kEllipse: {
+        const std::string p = path + ".ellipse";
+        out.node = Ellipse{to_vec2(in.ellipse().center(), p + ".center"),
+                           positive(in.ellipse().semi_axis_x(), p + ".semi_axis_x"),
+                           positive(in.ellipse().semi_axis_y(), p + ".semi_axis_y")};
+        break;
+      }
+      case v1::Shape::kHalfPlane: {
+        const std::string p = path + ".half_plane";
+        const Vec2 normal = to_vec2(in.half_plane().normal(), p + ".normal");
+        if (normal.x == 0 && normal.y == 0) {
+          throw_invalid(p + ".normal", "must be non-zero (got (0, 0)); it need not be unit length");
+        }
+        out.node = HalfPlane{normal, finite(in.half_plane().offset(), p + ".offset")};
+        break;
+      }
+      case v1::Shape::kUnion:
+        out.node = csg(CsgOp::kUnion, in.union_().shapes(), path + ".union", depth, name);
+        break;
+      case v1::Shape::kIntersection:
+        out.node = csg(CsgOp::kIntersection, in.intersection().shapes(), path + ".intersection",
+                       depth, name);
+        break;
+      case v1::Shape::kDifference: {
+        const std::string p = path + ".difference";
+        const auto& d = in.difference();
+        if (!d.has_base()) throw_invalid(p + ".base", "required: the shape to subtract from");
+        Csg c{CsgOp::kDifference, {}};
+        c.operands.reserve(1 + d.subtract_size());
+        c.operands.push_back(convert(d.base(), p + ".base", depth + 1, name));
+        for (int i = 0; i < d.subtract_size(); ++i) {
+          c.operands.push_back(convert(d.subtract(i), at(p, "subtract", i), depth + 1, name));
+        }
+        out.node = std::move(c);
+        break;
+      }
+      case v1::Shape::kTranslate: {
+        const std::string p = path + ".translate";
+        const auto& t = in.translate();
+        Similarity s;
+        s.offset = to_vec2(t.offset(), p + ".offset");
+        if (!t.has_shape()) throw_invalid(p + ".shape", "required: the shape to translate");
+        out.node = Transformed{s, {convert(t.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape::kRotate: {
+        // About c: p -> R(p - c) + c = R p + (c - R c).
+        const std::string p = path + ".rotate";
+        const auto& r = in.rotate();
+        const double degrees = finite(r.angle_deg(), p + ".angle_deg");
+        const Vec2 c = to_vec2(r.center(), p + ".center");
+        Similarity s;
+        s.angle = degrees * (std::numbers::pi / 180.0);
+        s.offset = c - apply(s, c);
+        if (!r.has_shape()) throw_invalid(p + ".shape", "required: the shape to rotate");
+        out.node = Transformed{s, {convert(r.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape::kScale: {
+        // About c: p -> f (p - c) + c = f p + (1 - f) c.
+        const std::string p = path + ".scale";
+        const auto& sc = in.scale();
+        Similarity s;
+        s.scale = positive(sc.factor(), p + ".factor");
+        const Vec2 c = to_vec2(sc.center(), p + ".center");
+        s.offset = (1.0 - s.scale) * c;
+        if (!sc.has_shape()) throw_invalid(p + ".shape", "required: the shape to scale");
+        out.node = Transformed{s, {convert(sc.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape::KIND_NOT_SET:
+        throw_invalid(path,
+                      "no shape kind set; set exactly one of circle, rectangle, polygon, ellipse, "
+                      "half_plane, union, intersection, difference, translate, rotate, scale");
+    }
+    return out;
+  }
+
+  Csg csg(CsgOp op, const google::protobuf::RepeatedPtrField<v1::Shape>& shapes,
+          const std::string& path, int depth, const std::string& name) {
+    if (shapes.empty()) throw_invalid(path + ".shapes", "needs at least 1 shape (got 0)");
+    Csg c{op, {}};
+    c.operands.reserve(shapes.size());
+    for (int i = 0; i < shapes.size(); ++i) {
+      c.operands.push_back(convert(shapes[i], at(path, "shapes", i), depth + 1, name));
+    }
+    return c;
+  }
+
+  Polygon polygon(const v1::Polygon& in, const std::string& path) {
+    if (in.vertices_size() > limits_.max_polygon_vertices) {
+      throw_invalid(path + ".vertices", "at most " + std::to_string(limits_.max_polygon_vertices) +
+                                            " vertices allowed (got " +
+                                            std::to_string(in.vertices_size()) + ")");
+    }
+    Polygon out;
+    out.vertices.reserve(in.vertices_size());
+    for (int i = 0; i < in.vertices_size(); ++i) {
+      out.vertices.push_back(to_vec2(in.vertices(i), at(path, "vertices", i)));
+    }
+    check_simple_polygon(out.vertices, path);
+    return out;
+  }
+
+  const ConversionLimits& limits_;
+  const std::string root_;
+  int nodes_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The size field.
+
+SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
+  SizeFieldSpec out;
+  if (!request.has_size()) return out;
+  const auto& terms = request.size().terms();
+  if (terms.size() > limits.max_size_terms) {
+    throw_invalid("size.terms", "at most " + std::to_string(limits.max_size_terms) +
+                                    " terms allowed (got " + std::to_string(terms.size()) + ")");
+  }
+
+  // h = min over terms, so max h <= min over terms of each term's largest value, and
+  // min h >= min over terms of each term's smallest value.
+  double largest = std::numeric_limits<double>::infinity(), smallest = largest;
+  int largest_term = -1, smallest_term = -1;
+  for (int i = 0; i < terms.size(); ++i) {
+    const std::string p = at("size", "terms", i);
+    double low = 0.0, high = 0.0;
+    switch (terms[i].kind_case()) {
+      case v1::SizeTerm::kUniform: {
+        const double v = positive(terms[i].uniform().value(), p + ".uniform.value");
+        out.terms.emplace_back(std::in_place_type<UniformSize>, v);
+        low = high = v;
+        break;
+      }
+      case v1::SizeTerm::kDistance: {
+        const std::string q = p + ".distance";
+        const auto& d = terms[i].distance();
+        DistanceSize term;
+        term.h_min = positive(d.h_min(), q + ".h_min");
+        term.slope = d.slope();
+        if (!(std::isfinite(term.slope) && term.slope >= 0)) {
+          throw_invalid(q + ".slope", "must be finite and >= 0" + got(term.slope));
+        }
+        term.h_max = d.h_max();
+        if (!(std::isfinite(term.h_max) && term.h_max >= term.h_min)) {
+          throw_invalid(q + ".h_max",
+                        "must be finite and >= h_min = " + num(term.h_min) + got(term.h_max));
+        }
+        if (!d.has_shape()) throw_invalid(q + ".shape", "required: the shape to measure from");
+        term.shape = ShapeConverter(limits, q + ".shape").convert(d.shape());
+        low = term.h_min;
+        high = term.h_max;
+        out.terms.emplace_back(std::in_place_type<DistanceSize>, std::move(term));
+        break;
+      }
+      case v1::SizeTerm::KIND_NOT_SET:
+        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance");
+    }
+    if (high < largest) largest = high, largest_term = i;
+    if (low < smallest) smallest = low, smallest_term = i;
+  }
+
+  if (!terms.empty() && largest > limits.max_size_ratio * smallest) {
+    throw_invalid("size", "h may vary by a factor up to " + num(largest / smallest) +
+                              " (largest h " + num(largest) + " from size.terms[" +
+                              std::to_string(largest_term) + "], smallest " + num(smallest) +
+                              " from size.terms[" + std::to_string(smallest_term) + "]); at most " +
+                              num(limits.max_size_ratio) + " allowed: lower h_max or raise h_min");
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// DistMesh parameters: each optional, checked against the range its proto comment states.
+
+// Checks lo < v <= hi (lo_open) or lo <= v <= hi; NaN fails either.
+double in_range(double v, double lo, bool lo_open, double hi, const std::string& field) {
+  const bool ok = (lo_open ? v > lo : v >= lo) && v <= hi;
+  if (!ok) {
+    throw_invalid(field, std::string("must be in ") + (lo_open ? "(" : "[") + num(lo) + ", " +
+                             num(hi) + "]" + got(v));
+  }
+  return v;
+}
+
+int in_range(uint32_t v, uint32_t lo, uint32_t hi, const std::string& field) {
+  if (v < lo || v > hi) {
+    throw_invalid(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                             "] (got " + std::to_string(v) + ")");
+  }
+  return static_cast<int>(v);
+}
+
+Params params(const v1::MeshRequest& request) {
+  Params out;
+  if (!request.has_params()) return out;
+  const auto& in = request.params();
+  if (in.has_dptol()) out.dptol = in_range(in.dptol(), 0, true, 0.1, "params.dptol");
+  if (in.has_ttol()) out.ttol = in_range(in.ttol(), 0, true, 1, "params.ttol");
+  if (in.has_fscale()) out.fscale = in_range(in.fscale(), 1, false, 2, "params.fscale");
+  if (in.has_deltat()) out.deltat = in_range(in.deltat(), 0, true, 0.5, "params.deltat");
+  if (in.has_geps()) out.geps = in_range(in.geps(), 0, true, 0.1, "params.geps");
+  if (in.has_density_control_interval()) {
+    out.density_control_interval =
+        in_range(in.density_control_interval(), 0, 1000, "params.density_control_interval");
+  }
+  if (in.has_max_iterations()) {
+    out.max_iterations = in_range(in.max_iterations(), 1, 1'000'000, "params.max_iterations");
+  }
+  if (in.has_cleanup()) out.cleanup = in.cleanup();
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The estimated node count, last: it needs the whole Problem.
+
+void check_node_count(const Problem& problem, const ConversionLimits& limits) {
+  // Throws on its own for an empty domain, a missing bbox or a fixed point outside.
+  const double nodes = estimate_node_count(problem);
+  const double h0 = problem.h0;
+  if (!(nodes >= 3)) {
+    throw_invalid("h0", "h0 = " + num(h0) + " gives about " + approx(nodes) +
+                            " nodes; at least 3 are needed: h0 must be at most about " +
+                            approx(h0 * std::sqrt(nodes / 3)));
+  }
+  if (nodes > static_cast<double>(limits.max_nodes)) {
+    throw Error(ErrorCode::kResourceExhausted, "h0",
+                "h0 = " + num(h0) + " gives about " + approx(nodes) +
+                    " nodes, more than the limit of " + std::to_string(limits.max_nodes) +
+                    ": h0 must be at least about " +
+                    approx(h0 * std::sqrt(nodes / static_cast<double>(limits.max_nodes))));
+  }
+}
+
+}  // namespace
+
+Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits) {
+  Problem problem;
+
+  if (!request.has_geometry()) throw_invalid("geometry", "required: the domain to mesh");
+  problem.geometry = ShapeConverter(limits, "geometry").convert(request.geometry());
+  problem.size = size_field(request, limits);
+  problem.h0 = positive(request.h0(), "h0");
+
+  if (request.has_bbox()) {
+    Box box{to_vec2(request.bbox().min(), "bbox.min"), to_vec2(request.bbox().max(), "bbox.max")};
+    check_min_below_max(box.min, box.max, "bbox");
+    problem.bbox = box;
+  }
+
+  const auto& points = request.fixed_points();
+  if (points.size() > limits.max_fixed_points) {
+    throw_invalid("fixed_points", "at most " + std::to_string(limits.max_fixed_points) +
+                                      " fixed points allowed (got " +
+                                      std::to_string(points.size()) + ")");
+  }
+  problem.fixed_points.reserve(points.size());
+  for (int i = 0; i < points.size(); ++i) {
+    problem.fixed_points.push_back(to_vec2(points[i], "fixed_points[" + std::to_string(i) + "]"));
+  }
+
+  problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
+  problem.params = params(request);
+  problem.seed = request.seed();
+
+  check_node_count(problem, limits);
+  return problem;
+}
+
+}  // namespace meshd

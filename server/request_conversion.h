@@ -1,0 +1,40 @@
+// The one validation and conversion layer between the API (meshd.v1.MeshRequest) and core's
+// Problem. Every entry point (server, CLI, benchmarks) goes through to_problem, so that a request
+// means the same thing and fails the same way wherever it comes from.
+//
+// Errors: every bad field throws Error(kInvalidArgument) with the protobuf field path
+// ("geometry.difference.subtract[1].circle.radius", "params.deltat", "fixed_points[2].x") and a
+// message that states the allowed range and the value received. A valid request that is larger
+// than `limits` allow (too many estimated nodes) throws Error(kResourceExhausted) naming "h0".
+#pragma once
+
+#include <cstdint>
+
+#include "core/distmesh/problem.h"
+#include "meshd/v1/request.pb.h"
+
+namespace meshd {
+
+// What one request may ask for. The defaults are the ones quoted in the proto comments; a
+// server may lower or raise them (a deployment with small GPUs lowers max_nodes).
+struct ConversionLimits {
+  int64_t max_nodes = 5'000'000;       // estimated node count (RESOURCE_EXHAUSTED above)
+  int max_tree_depth = 32;             // levels of one Shape tree; a lone primitive is 1
+  int max_tree_nodes = 10'000;         // Shape nodes in one tree (the geometry, or a size term's)
+  int max_polygon_vertices = 100'000;  // vertices of one polygon
+  double max_size_ratio = 1000;        // bound on (largest h) / (smallest h) of the size field
+  int max_size_terms = 100;            // terms of the size field
+  int max_fixed_points = 100'000;      // entries of fixed_points
+};
+
+// Validates `request` against the proto's documented ranges and `limits`, and converts it.
+// Lengths keep the request's unit; angles become radians; unset optional parameters take core's
+// defaults (Params); names propagate down the tree (a node's `name` is its own or its nearest
+// named ancestor's, empty when neither; the geometry compiler names the rest). Estimates the
+// node count last, so a Problem that comes back will mesh to between 3 and max_nodes nodes.
+//
+//   request  the API message, as received or parsed from text
+//   limits   the caller's limits
+Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits = {});
+
+}  // namespace meshd
