@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -68,7 +69,7 @@ double polygon_reference(const std::vector<Vec2>& v, Vec2 p) {
 // sampling of t, then every sampled local minimum refined by golden-section search. Independent
 // of the evaluator's root finding; accurate to a few ulps of the semi axes.
 double ellipse_boundary_distance(double a, double b, Vec2 q) {
-  constexpr int kSamples = 4096;
+  constexpr int kSamples = 2048;
   auto f = [&](double t) {
     const double dx = a * std::cos(t) - q.x, dy = b * std::sin(t) - q.y;
     return dx * dx + dy * dy;
@@ -176,14 +177,11 @@ struct EllipseCase {
 };
 
 std::string ellipse_case_name(const ::testing::TestParamInfo<EllipseCase>& param) {
-  auto fmt = [](double v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (s.back() == '.') s.pop_back();
-    std::replace(s.begin(), s.end(), '.', '_');
-    return s;
-  };
-  return "a" + fmt(param.param.a) + "_b" + fmt(param.param.b);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "a%g_b%g", param.param.a, param.param.b);
+  std::string name = buf;
+  std::replace(name.begin(), name.end(), '.', '_');
+  return name;
 }
 
 // Query points: uniform over a box around the ellipse, on and near both axes (`offsets` are
