@@ -14,8 +14,11 @@
 namespace meshd {
 namespace {
 
-constexpr int kSubpixels = 10;    // grid units per pixel
-constexpr int kColourBins = 20;   // quality bins, each one <path>
+constexpr int kSubpixels = 10;   // grid units per pixel
+constexpr int kColourBins = 20;  // quality bins, each one colour
+// librsvg (libxml2) rejects attribute values past a few megabytes, so a bin's triangles are split
+// over paths of at most this many (about 250 kB of path data each).
+constexpr size_t kMaxTrianglesPerPath = 10000;
 constexpr double kMinEdgePx = 4;  // draw triangle edges only when the mean edge is this long
 constexpr double kLegendRowPx = 22;
 
@@ -161,10 +164,13 @@ void write_svg(const Mesh& mesh, std::ostream& out, const SvgOptions& options) {
   for (int k = 0; k < kColourBins; ++k) {
     if (bins[k].empty()) continue;
     const std::string colour = bin_colour(k);
-    b.text("<path fill=\"").text(colour).text("\" stroke=\"");
-    b.text(draw_edges ? "#303030" : colour).text("\" d=\"");
-    for (const int32_t i : bins[k]) {
-      const auto& t = mesh.triangles[i];
+    for (size_t j = 0; j < bins[k].size(); ++j) {
+      if (j % kMaxTrianglesPerPath == 0) {
+        if (j > 0) b.text("\"/>\n");
+        b.text("<path fill=\"").text(colour).text("\" stroke=\"");
+        b.text(draw_edges ? "#303030" : colour).text("\" d=\"");
+      }
+      const auto& t = mesh.triangles[bins[k][j]];
       const auto p0 = to_grid(mesh.points[t[0]]);
       const auto p1 = to_grid(mesh.points[t[1]]);
       const auto p2 = to_grid(mesh.points[t[2]]);
@@ -178,7 +184,7 @@ void write_svg(const Mesh& mesh, std::ostream& out, const SvgOptions& options) {
   b.text("</g>\n");
 
   // ---- Boundary, one path per group, chained where edges meet ----
-  b.text("<g fill=\"none\" stroke-width=\"15\" stroke-linecap=\"round\" ");
+  b.text("<g fill=\"none\" stroke-width=\"25\" stroke-linecap=\"round\" ");
   b.text("stroke-linejoin=\"round\">\n");
   for (size_t g = 0; g < mesh.boundary_names.size(); ++g) {
     b.text("<path stroke=\"").text(kGroupColours[g % kNumGroupColours]).text("\" d=\"");
@@ -215,7 +221,7 @@ void write_svg(const Mesh& mesh, std::ostream& out, const SvgOptions& options) {
     }
     char summary[160];
     std::snprintf(summary, sizeof(summary),
-                  "q 0..1   q_min %.3f   q_mean %.3f   min angle %.1f deg   %zu triangles",
+                  "q = 0 to 1; q_min %.3f, q_mean %.3f, min angle %.1f\u00b0, %zu triangles",
                   stats.q_min, stats.q_mean, stats.min_angle_deg, mesh.triangles.size());
     b.text("<text x=\"").number(std::llround(x0 + (kColourBins + 1) * swatch)).text("\" y=\"");
     b.number(std::llround(row0 + 10.5 * unit)).text("\">").text(summary).text("</text>\n");

@@ -3,8 +3,9 @@
 //
 // Size stays proportional to the triangle count and small per triangle: coordinates are
 // integers on a 1/10 px grid, each triangle is one relative "M x y l dx dy dx dy z" run, and
-// triangles share one <path> per quality bin instead of one element each (about 25 bytes per
-// triangle, so some 25 MB at a million triangles). Edges are drawn only while triangles are
+// triangles share a <path> per quality bin (split every 10,000 triangles, which keeps XML
+// parsers' attribute limits happy) instead of one element each: about 20 bytes per triangle, so
+// some 20 MB at a million triangles. Edges are drawn only while triangles are
 // large enough on the page for them to be seen.
 #pragma once
 

@@ -56,7 +56,7 @@ TEST(WriteSvg, DrawsEveryTriangleOnceAndTheBoundaryPerGroup) {
   }
   const QualityStats stats = summarize_quality(mesh);
   char expected[64];
-  std::snprintf(expected, sizeof(expected), "q_min %.3f   q_mean %.3f", stats.q_min, stats.q_mean);
+  std::snprintf(expected, sizeof(expected), "q_min %.3f, q_mean %.3f", stats.q_min, stats.q_mean);
   EXPECT_NE(svg.find(expected), std::string::npos) << expected;
   // Large triangles: edges drawn in grey.
   EXPECT_NE(svg.find("stroke=\"#303030\""), std::string::npos);
@@ -85,6 +85,8 @@ TEST(WriteSvg, SizeStaysSmallPerTriangleAndEdgesDisappearWhenTiny) {
   const std::string svg = write(mesh);
   EXPECT_EQ(filled_triangles(svg), mesh.triangles.size());
   EXPECT_LT(svg.size(), 30 * mesh.triangles.size());
+  // One bin (congruent triangles), split into paths of at most 10,000 triangles for parsers.
+  EXPECT_EQ(count(svg, "<path fill=\"#"), 18u);
   EXPECT_EQ(svg.find("stroke=\"#303030\""), std::string::npos);
 }
 
