@@ -5,7 +5,7 @@
 
 #include "core/delaunay/delaunay.h"
 #include "core/distmesh/initial_points.cuh"
-#include "core/geometry/sdf_eval.cuh"
+#include "core/geometry/projection.cuh"
 #include "core/geometry/size_eval.cuh"
 
 namespace meshd {
@@ -51,6 +51,18 @@ int64_t CpuEngine::initialize(const CompiledProblem& problem) {
     if (!near_fixed) p_.push_back(q);
   }
   pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
+  velocity_.assign(p_.size(), Vec2{});
+  triangles_.clear();
+  bars_.clear();
+  return node_count();
+}
+
+int64_t CpuEngine::load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) {
+  problem_ = &problem;
+  p_ = points;
+  nfix_ = static_cast<int64_t>(problem.fixed_points.size());
+  pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
+  velocity_.assign(p_.size(), Vec2{});
   triangles_.clear();
   bars_.clear();
   return node_count();
@@ -167,6 +179,7 @@ void CpuEngine::keep_points(const std::vector<char>& remove) {
     if (!remove[i]) p_[out++] = p_[i];
   p_.resize(out);
   pold_.assign(out, Vec2{INFINITY, INFINITY});
+  velocity_.assign(out, Vec2{});
   triangles_.clear();
   bars_.clear();
 }
@@ -193,9 +206,11 @@ StepResult CpuEngine::move_points() {
   // Each node sums its bars (CSR), moves, and is projected back when it left the domain.
   const ProgramView fd = problem_->geometry.view();
   const size_t chunks = ThreadPool::chunk_count(n, kChunk);
-  std::vector<double> chunk_move(chunks, 0.0), chunk_drift(chunks, 0.0);
+  std::vector<double> chunk_move(chunks, 0.0), chunk_drift(chunks, 0.0), chunk_sq(chunks, 0.0);
+  std::vector<int64_t> chunk_interior(chunks, 0);
   pool_.for_chunks(n, kChunk, [&](size_t c, size_t begin, size_t end) {
-    double max_move = 0.0, max_drift = 0.0;
+    double max_move = 0.0, max_drift = 0.0, sq = 0.0;
+    int64_t interior = 0;
     for (size_t i = begin; i < end; ++i) {
       if (static_cast<int64_t>(i) < nfix_) continue;  // fixed nodes stay exactly where they are
       Vec2 total{};
@@ -206,14 +221,15 @@ StepResult CpuEngine::move_points() {
           total = (e & 1) ? total - f : total + f;
         }
       }
-      const Vec2 step = prm.deltat * total;
+      // Heavy-ball momentum: the previous step carries over, scaled (params.h).
+      const Vec2 step = prm.deltat * total + prm.momentum * velocity_[i];
+      velocity_[i] = step;
       Vec2 q = p_[i] + step;
       const double d = eval_sdf(fd, q);
-      if (d > 0.0) {
-        const double gx = (eval_sdf(fd, {q.x + deps, q.y}) - d) / deps;
-        const double gy = (eval_sdf(fd, {q.x, q.y + deps}) - d) / deps;
-        const double g2 = gx * gx + gy * gy;
-        if (g2 > 0.0) q = q - (d / g2) * Vec2{gx, gy};
+      if (d > 0.0) q = project_step(fd, q, d, deps);
+      if (d < -geps) {
+        sq += dot(step, step);
+        ++interior;
       }
       if (d < -geps) max_move = std::max(max_move, norm(step));
       p_[i] = q;
@@ -221,8 +237,17 @@ StepResult CpuEngine::move_points() {
     }
     chunk_move[c] = max_move;
     chunk_drift[c] = max_drift;
+    chunk_sq[c] = sq;
+    chunk_interior[c] = interior;
   });
   StepResult r;
+  double sq = 0.0;
+  int64_t interior = 0;
+  for (size_t c = 0; c < chunks; ++c) {
+    sq += chunk_sq[c];
+    interior += chunk_interior[c];
+  }
+  r.rms_move = interior > 0 ? std::sqrt(sq / interior) / h0 : 0.0;
   for (size_t c = 0; c < chunks; ++c) {
     r.max_move = std::max(r.max_move, chunk_move[c] / h0);
     r.max_drift = std::max(r.max_drift, chunk_drift[c] / h0);

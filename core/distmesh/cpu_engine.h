@@ -21,6 +21,7 @@ class CpuEngine final : public Engine {
 
   const char* name() const override { return "cpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
+  int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
   TopologyStats retriangulate(bool full) override;
   int64_t remove_crowded_points() override;
   StepResult move_points() override;
@@ -41,7 +42,8 @@ class CpuEngine final : public Engine {
   ThreadPool& pool_;
   const CompiledProblem* problem_ = nullptr;
   std::vector<Vec2> p_;      // #N by 2
-  std::vector<Vec2> pold_;   // #N by 2, positions at the last triangulation
+  std::vector<Vec2> pold_;
+  std::vector<Vec2> velocity_;  // #N by 2, the last step (momentum)   // #N by 2, positions at the last triangulation
   int64_t nfix_ = 0;
   std::vector<std::array<int32_t, 3>> triangles_;  // #M by 3
   std::vector<std::array<int32_t, 2>> bars_;       // #B by 2

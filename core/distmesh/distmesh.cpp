@@ -1,11 +1,15 @@
 #include "core/distmesh/distmesh.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/common/error.h"
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/cleanup.h"
+#include "core/distmesh/node_estimate.h"
+#include "core/distmesh/refine.h"
 #include "core/distmesh/optimize_worst.h"
 
 namespace meshd {
@@ -15,6 +19,21 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The coarsest level aims at [kCoarsestNodes, 4 kCoarsestNodes) nodes: large enough that its
+// mesh resolves the geometry, small enough that its slow global relaxation is cheap.
+constexpr double kCoarsestNodes = 2000.0;
+
+std::vector<CompiledProblem> multilevel_problems(const CompiledProblem& problem) {
+  int coarsenings = 0;
+  for (double n = estimate_node_count(problem); n >= 4.0 * kCoarsestNodes; n /= 4.0) ++coarsenings;
+  std::vector<CompiledProblem> levels;
+  for (int k = coarsenings; k >= 0; --k) {
+    levels.push_back(problem);
+    levels.back().h0 = std::ldexp(problem.h0, k);
+  }
+  return levels;
 }
 
 // One run of the loop: the counters, the timers and the observer calls in one place.
@@ -29,18 +48,35 @@ class Loop {
     MeshResult result;
     RunStats& s = stats_;
 
-    // 1-2. Initial points.
-    auto t = Clock::now();
-    engine_.initialize(problem_);
-    s.t_initial += seconds_since(t);
-    triangulate(true);
-
-    // 3-8. Relax until no interior node moves more than dptol * h0.
-    s.converged = relax(problem_.params.max_iterations, true, s.iterations);
+    // Multilevel: levels[0] is the coarsest (h0 * 2^L), levels[L] the problem itself.
+    const std::vector<CompiledProblem> levels = multilevel_problems(problem_);
+    for (size_t level = 0; level < levels.size(); ++level) {
+      current_ = &levels[level];
+      auto t = Clock::now();
+      if (level == 0) {
+        // 1-2. Initial points.
+        engine_.initialize(*current_);
+      } else {
+        engine_.read_points(points_);
+        engine_.read_triangles(triangles_);
+        refine_by_midpoints(*current_, points_, triangles_);
+        engine_.load_points(*current_, points_);
+      }
+      s.t_initial += seconds_since(t);
+      triangulate(true);
+      // 3-8. Relax until no interior node moves more than dptol * h0.
+      const int before = s.iterations;
+      const int budget = std::max(1, current_->params.max_iterations - s.iterations);
+      s.converged = relax(budget, true, s.iterations);
+      s.equivalent_iterations += (s.iterations - before) * static_cast<double>(engine_.node_count());
+    }
+    s.levels = static_cast<int>(levels.size());
+    s.equivalent_iterations /= static_cast<double>(engine_.node_count());
+    current_ = &problem_;
 
     // Boundary clean-up: remove the middle node of boundary slivers, then relax again.
     if (problem_.params.cleanup) {
-      t = Clock::now();
+      const auto t = Clock::now();
       for (int round = 0; round < kCleanupRounds; ++round) {
         engine_.read_points(points_);
         engine_.read_triangles(triangles_);
@@ -60,7 +96,7 @@ class Loop {
     engine_.read_points(points_);
     engine_.read_triangles(triangles_);
     if (problem_.params.cleanup) {
-      t = Clock::now();
+      const auto t = Clock::now();
       s.optimized_moves = optimize_worst_elements(problem_, points_, triangles_);
       s.t_cleanup += seconds_since(t);
     }
@@ -74,6 +110,7 @@ class Loop {
  private:
   static constexpr int kCleanupRounds = 3;
   static constexpr int kCleanupIterations = 200;
+  static constexpr double kMaxMoveFactor = 10.0;
 
   void triangulate(bool full) {
     const auto t = Clock::now();
@@ -89,7 +126,7 @@ class Loop {
   // Steps 3-8 for at most `max_iterations`; adds the iterations run to `iterations`. Returns
   // whether the termination test passed.
   bool relax(int max_iterations, bool density_control, int& iterations) {
-    const Params& prm = problem_.params;
+    const Params& prm = current_->params;
     for (int it = 1; it <= max_iterations; ++it) {
       if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
         throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
@@ -114,7 +151,10 @@ class Loop {
       stats_.t_forces += seconds_since(t);
       drift_ = step.max_drift;
       report(iterations, step.max_move);
-      if (step.max_move < prm.dptol) return true;
+      // 8. Termination (params.h): the interior has settled as a whole and no node still moves
+      // far; waiting for the last annealing node to stop costs hundreds of iterations and no
+      // quality.
+      if (step.rms_move < prm.dptol && step.max_move < kMaxMoveFactor * prm.dptol) return true;
     }
     return false;
   }
@@ -138,6 +178,7 @@ class Loop {
   }
 
   const CompiledProblem& problem_;
+  const CompiledProblem* current_ = &problem_;  // the level being relaxed
   Engine& engine_;
   Observer* observer_;
   const std::atomic<bool>* cancel_;

@@ -12,7 +12,9 @@
 namespace meshd {
 
 struct RunStats {
-  int iterations = 0;          // of the main loop, clean-up relaxation not included
+  int iterations = 0;          // of the main loop over all levels, clean-up not included
+  int levels = 1;              // multilevel: meshes at h0 * 2^k, k = levels-1 .. 0
+  double equivalent_iterations = 0;  // sum of iterations * nodes of each level / final nodes
   bool converged = false;      // false: stopped at max_iterations
   int retriangulations = 0;    // all triangulations, the first included
   int full_triangulations = 0;

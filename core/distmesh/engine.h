@@ -15,7 +15,8 @@ namespace meshd {
 
 struct StepResult {
   double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
-  double max_drift = 0.0;  // largest |p - p_at_last_triangulation| after the step, / h0
+  double max_drift = 0.0;
+  double rms_move = 0.0;   // root mean square of the interior moves, / h0  // largest |p - p_at_last_triangulation| after the step, / h0
 };
 
 struct TopologyStats {
@@ -33,6 +34,9 @@ class Engine {
   // Steps 1-2: loads `problem` (kept by reference until the next call) and places the initial
   // points, fixed points first. Returns the node count.
   virtual int64_t initialize(const CompiledProblem& problem) = 0;
+  // Loads `problem` like initialize, but starts from `points` (#N by 2, fixed points first):
+  // the next level of a multilevel run. Returns the node count.
+  virtual int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) = 0;
   // Step 3: Delaunay triangulation (from scratch when `full`, otherwise the engine may repair
   // the previous one), the centroid filter and the bar list.
   virtual TopologyStats retriangulate(bool full) = 0;

@@ -34,11 +34,14 @@ double inverse_size_integral(const CompiledProblem& c) {
 
 }  // namespace
 
-double estimate_node_count(const Problem& problem) {
-  const CompiledProblem c = compile_problem(problem);
-  const double integral = inverse_size_integral(c);
+double estimate_node_count(const CompiledProblem& problem) {
+  const double integral = inverse_size_integral(problem);
   if (integral <= 0.0) throw_invalid("geometry", "the domain is empty or thinner than its box / 400");
   return 2.0 / std::sqrt(3.0) * integral / (problem.h0 * problem.h0);
+}
+
+double estimate_node_count(const Problem& problem) {
+  return estimate_node_count(compile_problem(problem));
 }
 
 double h0_for_node_count(const Problem& problem, double nodes) {

@@ -10,6 +10,9 @@ namespace meshd {
 // Throws Error(kInvalidArgument) naming "geometry" when the domain is empty.
 double estimate_node_count(const Problem& problem);
 
+struct CompiledProblem;
+double estimate_node_count(const CompiledProblem& problem);
+
 // The h0 that aims `problem` at about `nodes` nodes (N scales as 1 / h0^2).
 double h0_for_node_count(const Problem& problem, double nodes);
 

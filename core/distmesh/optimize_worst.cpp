@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/geometry/sdf_eval.cuh"
+#include "core/geometry/projection.cuh"
 #include "core/mesh/boundary.h"
 #include "core/mesh/quality.h"
 
@@ -81,22 +81,6 @@ class Optimizer {
     return worst;
   }
 
-  Vec2 gradient(Vec2 x, double d) const {
-    return {(eval_sdf(fd_, {x.x + deps_, x.y}) - d) / deps_,
-            (eval_sdf(fd_, {x.x, x.y + deps_}) - d) / deps_};
-  }
-
-  Vec2 project_to_boundary(Vec2 x) const {
-    for (int it = 0; it < 3; ++it) {
-      const double d = eval_sdf(fd_, x);
-      const Vec2 g = gradient(x, d);
-      const double g2 = dot(g, g);
-      if (g2 <= 0.0) break;
-      x = x - (d / g2) * g;
-    }
-    return x;
-  }
-
   double mean_star_edge(int32_t v) const {
     double sum = 0.0;
     int count = 0;
@@ -122,7 +106,7 @@ class Optimizer {
         Vec2 dirs[8];
         int n_dirs = 0;
         if (boundary) {
-          const Vec2 g = gradient(p_[v], eval_sdf(fd_, p_[v]));
+          const Vec2 g = sdf_gradient(fd_, p_[v], eval_sdf(fd_, p_[v]), deps_);
           const double len = norm(g);
           if (len <= 0.0) return false;
           dirs[n_dirs++] = {-g.y / len, g.x / len};
@@ -133,7 +117,7 @@ class Optimizer {
         Vec2 best_x = p_[v];
         for (int k = 0; k < n_dirs; ++k) {
           Vec2 x = p_[v] + step * dirs[k];
-          if (boundary) x = project_to_boundary(x);
+          if (boundary) x = project_to_boundary(fd_, x, deps_);
           else if (eval_sdf(fd_, x) >= 0.0) continue;
           const double q = star_quality(v, x);
           if (q > best) {

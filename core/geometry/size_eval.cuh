@@ -15,9 +15,9 @@ MESHD_HD inline double eval_size(SizeView size, Vec2 p) {
     double term = t.h_min;
     if (t.begin != t.end) {
       const double d = eval_sdf_range(size.shapes, t.begin, t.end, p);
-      term = fmin(t.h_max, t.h_min + t.slope * fabs(d));
+      term = min2(t.h_max, t.h_min + t.slope * fabs(d));
     }
-    h = fmin(h, term);
+    h = min2(h, term);
   }
   return h;
 }
