@@ -1,7 +1,6 @@
 #include "core/mesh/msh41_writer.h"
 
 #include <algorithm>
-#include <limits>
 #include <string>
 #include <vector>
 

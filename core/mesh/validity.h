@@ -14,8 +14,9 @@
 namespace meshd {
 
 // A triangle counts as degenerate when 2 * area <= tolerance * (longest edge)^2. Relative to the
-// longest edge so that the test does not depend on the length unit; 1e-12 still accepts the
-// flattest slivers DistMesh can leave (their ratio is around 1e-3) and rejects round-off zeros.
+// longest edge so that the test does not depend on the length unit. 1e-12 rejects inverted
+// triangles and round-off zeros but accepts any sliver that is really there (an equilateral
+// triangle has 2 area / longest^2 = 0.87; one with a 1e-6 degree angle still has about 1e-8).
 constexpr double kDefaultAreaTolerance = 1e-12;
 
 struct ValidityReport {
