@@ -35,17 +35,30 @@ Triangulation delaunay_triangulate(const std::vector<Vec2>& points) {
   }
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f)
     if (dt.is_infinite(f)) f->info() = -1;
-
-  const size_t n_edges = dt.number_of_vertices() + out.triangles.size() + 1;  // Euler, roughly
-  out.edges.reserve(n_edges);
-  out.edge_faces.reserve(n_edges);
-  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
-    const auto f = e->first;
-    const int i = e->second;
-    out.edges.push_back({f->vertex(Delaunay::cw(i))->info(), f->vertex(Delaunay::ccw(i))->info()});
-    out.edge_faces.push_back({f->info(), f->neighbor(i)->info()});
-  }
+  out.neighbors.reserve(out.triangles.size());
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    out.neighbors.push_back({f->neighbor(0)->info(), f->neighbor(1)->info(), f->neighbor(2)->info()});
   return out;
+}
+
+}  // namespace meshd
+
+namespace meshd {
+
+std::vector<std::array<int32_t, 2>> edges_of_kept(const Triangulation& tri,
+                                                  const std::vector<char>& keep) {
+  std::vector<std::array<int32_t, 2>> edges;
+  edges.reserve(2 * tri.triangles.size());
+  for (size_t t = 0; t < tri.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u = tri.neighbors[t][k];
+      // Each interior edge once, from its lower-numbered triangle.
+      if (u >= 0 && u < static_cast<int32_t>(t)) continue;
+      if (!keep[t] && (u < 0 || !keep[u])) continue;
+      edges.push_back({tri.triangles[t][(k + 1) % 3], tri.triangles[t][(k + 2) % 3]});
+    }
+  }
+  return edges;
 }
 
 }  // namespace meshd

@@ -1,8 +1,8 @@
 // Delaunay triangulation of a point set through CGAL (exact predicates), returned as arrays.
 //
-// The edge list comes straight from the triangulation, each edge once with the triangles on its
-// two sides, so that the DistMesh bar list (the edges of the triangles kept inside the domain)
-// needs no sort and no hash: an edge is a bar when either side is kept.
+// Each triangle carries its three neighbours, so that the DistMesh bar list (the edges of the
+// triangles kept inside the domain) needs no sort and no hash, and so that a triangulation of
+// points that moved a little can be repaired by edge flips (lawson_repair.h) instead of rebuilt.
 #pragma once
 
 #include <array>
@@ -14,12 +14,17 @@
 namespace meshd {
 
 struct Triangulation {
-  std::vector<std::array<int32_t, 3>> triangles;   // #M by 3, counter-clockwise
-  std::vector<std::array<int32_t, 2>> edges;       // #E by 2, each edge once
-  std::vector<std::array<int32_t, 2>> edge_faces;  // #E by 2, triangle indices, -1 off the hull
+  std::vector<std::array<int32_t, 3>> triangles;  // #M by 3, counter-clockwise
+  // #M by 3: neighbors[t][k] is the triangle across the edge opposite triangles[t][k], -1 when
+  // that edge is on the outer boundary.
+  std::vector<std::array<int32_t, 3>> neighbors;
 };
 
 // Delaunay triangulation of `points` (#N by 2); duplicate points are kept out of the triangles.
 Triangulation delaunay_triangulate(const std::vector<Vec2>& points);
+
+// The edges that bound at least one triangle t with keep[t], each once. keep: #M.
+std::vector<std::array<int32_t, 2>> edges_of_kept(const Triangulation& tri,
+                                                  const std::vector<char>& keep);
 
 }  // namespace meshd

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/delaunay/delaunay.h"
+#include "core/delaunay/lawson_repair.h"
 #include "core/distmesh/initial_points.cuh"
 #include "core/geometry/projection.cuh"
 #include "core/geometry/size_eval.cuh"
@@ -52,6 +53,7 @@ int64_t CpuEngine::initialize(const CompiledProblem& problem) {
   }
   pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
   velocity_.assign(p_.size(), Vec2{});
+  dt_ = {};
   triangles_.clear();
   bars_.clear();
   return node_count();
@@ -63,6 +65,7 @@ int64_t CpuEngine::load_points(const CompiledProblem& problem, const std::vector
   nfix_ = static_cast<int64_t>(problem.fixed_points.size());
   pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
   velocity_.assign(p_.size(), Vec2{});
+  dt_ = {};
   triangles_.clear();
   bars_.clear();
   return node_count();
@@ -70,30 +73,37 @@ int64_t CpuEngine::load_points(const CompiledProblem& problem, const std::vector
 
 // ---- Step 3: triangulation -------------------------------------------------------------------
 
-TopologyStats CpuEngine::retriangulate(bool /*full: the CPU engine always rebuilds*/) {
-  Triangulation dt = delaunay_triangulate(p_);
+TopologyStats CpuEngine::retriangulate(bool full) {
+  TopologyStats stats;
+  stats.full = full || dt_.triangles.empty();
+  if (!stats.full) {
+    stats.flips = lawson_repair(p_, dt_keep_, dt_);
+    if (stats.flips < 0) {
+      // A triangle turned over since the last triangulation: flips cannot repair that.
+      stats.flips = 0;
+      stats.full = true;
+      stats.repair_failed = true;
+    }
+  }
+  if (stats.full) dt_ = delaunay_triangulate(p_);
+
   const ProgramView fd = problem_->geometry.view();
   const double geps = problem_->params.geps * problem_->h0;
-
-  std::vector<char> keep(dt.triangles.size());
-  pool_.for_chunks(dt.triangles.size(), kChunk, [&](size_t, size_t begin, size_t end) {
+  std::vector<char>& keep = dt_keep_;
+  keep.assign(dt_.triangles.size(), 0);
+  pool_.for_chunks(dt_.triangles.size(), kChunk, [&](size_t, size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
-      const auto& tri = dt.triangles[t];
+      const auto& tri = dt_.triangles[t];
       const Vec2 centroid = (1.0 / 3.0) * (p_[tri[0]] + p_[tri[1]] + p_[tri[2]]);
       keep[t] = eval_sdf(fd, centroid) < -geps;
     }
   });
   triangles_.clear();
-  for (size_t t = 0; t < dt.triangles.size(); ++t)
-    if (keep[t]) triangles_.push_back(dt.triangles[t]);
-  bars_.clear();
-  for (size_t e = 0; e < dt.edges.size(); ++e) {
-    const auto [f0, f1] = dt.edge_faces[e];
-    if ((f0 >= 0 && keep[f0]) || (f1 >= 0 && keep[f1])) bars_.push_back(dt.edges[e]);
-  }
+  for (size_t t = 0; t < dt_.triangles.size(); ++t)
+    if (keep[t]) triangles_.push_back(dt_.triangles[t]);
+  bars_ = edges_of_kept(dt_, keep);
   build_bar_csr();
   pold_ = p_;
-  TopologyStats stats;
   stats.triangles = static_cast<int64_t>(triangles_.size());
   stats.bars = static_cast<int64_t>(bars_.size());
   return stats;
@@ -180,6 +190,7 @@ void CpuEngine::keep_points(const std::vector<char>& remove) {
   p_.resize(out);
   pold_.assign(out, Vec2{INFINITY, INFINITY});
   velocity_.assign(out, Vec2{});
+  dt_ = {};
   triangles_.clear();
   bars_.clear();
 }

@@ -1,8 +1,9 @@
 // The CPU engine: DistMesh's steps over all cores, CGAL for the triangulation.
 //
 // Invariants between calls: p_ holds the nodes, fixed ones first (indices < nfix_); after a
-// retriangulation, triangles_ are the Delaunay triangles whose centroid lies inside, bars_ their
-// unique edges, and bar_csr_ lists for each node the bars that end there, so that each node sums
+// retriangulation, dt_ is the Delaunay triangulation of p_ (repaired by edge flips when the
+// points only drifted, rebuilt by CGAL otherwise), triangles_ those of its triangles whose
+// centroid lies inside, bars_ their unique edges, and bar_csr_ lists for each node the bars that end there, so that each node sums
 // its forces alone: no atomics, and the same bits for any number of threads.
 #pragma once
 
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/common/thread_pool.h"
+#include "core/delaunay/delaunay.h"
 #include "core/distmesh/engine.h"
 
 namespace meshd {
@@ -45,7 +47,9 @@ class CpuEngine final : public Engine {
   std::vector<Vec2> pold_;
   std::vector<Vec2> velocity_;  // #N by 2, the last step (momentum)   // #N by 2, positions at the last triangulation
   int64_t nfix_ = 0;
-  std::vector<std::array<int32_t, 3>> triangles_;  // #M by 3
+  Triangulation dt_;                               // the full Delaunay triangulation
+  std::vector<char> dt_keep_;                      // #M of dt_: centroid inside
+  std::vector<std::array<int32_t, 3>> triangles_;  // #M by 3, those kept inside
   std::vector<std::array<int32_t, 2>> bars_;       // #B by 2
   std::vector<double> bar_length_;                 // #B
   std::vector<double> bar_size_;                   // #B, h at the midpoint

@@ -118,6 +118,7 @@ class Loop {
     stats_.t_triangulation += seconds_since(t);
     ++stats_.retriangulations;
     if (topo.full) ++stats_.full_triangulations;
+    if (topo.repair_failed) ++stats_.repair_fallbacks;
     stats_.flips += topo.flips;
     drift_ = 0.0;
     ++topology_version_;

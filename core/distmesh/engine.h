@@ -24,6 +24,7 @@ struct TopologyStats {
   int64_t bars = 0;
   int64_t flips = 0;      // edge flips of a repair
   bool full = true;       // a full triangulation rather than a repair
+  bool repair_failed = false;  // a repair was asked for but found an inverted triangle
 };
 
 class Engine {

@@ -1,5 +1,6 @@
 #include "core/distmesh/node_estimate.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/common/error.h"
@@ -9,14 +10,17 @@
 namespace meshd {
 namespace {
 
-// Samples on the longer side of the box: enough for a few percent on smooth domains while
-// staying well under a millisecond per thousand samples.
-constexpr int kSamples = 400;
+// Up to 400 samples on the longer side of the box (a few percent on smooth domains), fewer when
+// the distance is expensive (long polygons), so that the estimate stays under ~0.1 s.
+constexpr double kMaxSamples = 400.0 * 400.0;
+constexpr double kWorkBudget = 2e7;  // program parameters read, summed over samples
 
 // integral over the domain of 1 / h(p)^2 dA, by the midpoint rule.
 double inverse_size_integral(const CompiledProblem& c) {
   const double w = c.bbox.max.x - c.bbox.min.x, hgt = c.bbox.max.y - c.bbox.min.y;
-  const double cell = std::max(w, hgt) / kSamples;
+  const double cost = static_cast<double>(c.geometry.params.size() + c.size.shapes.params.size());
+  const double samples = std::clamp(kWorkBudget / std::max(cost, 1.0), 64.0 * 64.0, kMaxSamples);
+  const double cell = std::sqrt(w * hgt / samples);
   const int nx = std::max(1, static_cast<int>(std::ceil(w / cell)));
   const int ny = std::max(1, static_cast<int>(std::ceil(hgt / cell)));
   const double dx = w / nx, dy = hgt / ny;

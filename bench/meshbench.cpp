@@ -1,0 +1,123 @@
+// meshbench: meshes request files with the engine alone (no service) and prints one table row
+// per request: sizes, iterations, time per phase and quality. Rows paste into RESULTS.md.
+//
+//   meshbench [--backend cpu] [--threads T] [--nodes N] [--repeat R] [-o OUT]... REQUEST...
+//
+// --nodes rescales h0 so that the estimate aims at N nodes; -o writes each mesh, with {name}
+// replaced by the request file's stem (format from the extension: .msh .msh22 .vtu .svg).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/common/error.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/cpu_engine.h"
+#include "core/distmesh/distmesh.h"
+#include "core/distmesh/node_estimate.h"
+#include "core/mesh/mesh_file.h"
+#include "core/mesh/validity.h"
+#include "server/request_conversion.h"
+#include "server/request_file.h"
+
+namespace {
+
+struct Options {
+  std::string backend = "cpu";
+  unsigned threads = 0;
+  double nodes = 0;
+  int repeat = 1;
+  std::vector<std::string> outputs;
+  std::vector<std::string> requests;
+};
+
+[[noreturn]] void usage(int code) {
+  std::fprintf(code == 0 ? stdout : stderr,
+               "usage: meshbench [--backend cpu] [--threads T] [--nodes N] [--repeat R]\n"
+               "                 [-o OUT]... REQUEST.textproto...\n"
+               "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
+               "  --repeat R  mesh each request R times and report the fastest run\n"
+               "  -o OUT      write each mesh to OUT ({name} = request file stem; .msh .msh22\n"
+               "              .vtu .svg); may be given several times\n");
+  std::exit(code);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(2);
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") usage(0);
+    else if (a == "--backend") o.backend = value();
+    else if (a == "--threads") o.threads = static_cast<unsigned>(std::stoul(value()));
+    else if (a == "--nodes") o.nodes = std::stod(value());
+    else if (a == "--repeat") o.repeat = std::max(1, std::stoi(value()));
+    else if (a == "-o") o.outputs.push_back(value());
+    else if (!a.empty() && a[0] == '-') usage(2);
+    else o.requests.push_back(a);
+  }
+  if (o.requests.empty()) usage(2);
+  if (o.backend != "cpu") {
+    std::fprintf(stderr, "meshbench: --backend %s is not available in this build (cpu)\n",
+                 o.backend.c_str());
+    std::exit(2);
+  }
+  return o;
+}
+
+std::string expand(std::string pattern, const std::string& name) {
+  for (size_t at; (at = pattern.find("{name}")) != std::string::npos;)
+    pattern.replace(at, 6, name);
+  return pattern;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  meshd::ThreadPool pool(opt.threads);
+  std::printf("| request | nodes | triangles | levels | iterations | equiv. iter | retri (repair/full) "
+              "| flips | t_tri s | t_forces s | t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  int failures = 0;
+  for (const std::string& path : opt.requests) {
+    const std::string name = std::filesystem::path(path).stem().string();
+    try {
+      meshd::Problem problem = meshd::to_problem(meshd::read_request_file(path));
+      if (opt.nodes > 0) problem.h0 = meshd::h0_for_node_count(problem, opt.nodes);
+      const meshd::CompiledProblem compiled = meshd::compile_problem(problem);
+      meshd::MeshResult best;
+      for (int r = 0; r < opt.repeat; ++r) {
+        meshd::CpuEngine engine(pool);
+        meshd::MeshResult result = meshd::generate_mesh(compiled, engine, nullptr, nullptr);
+        if (r == 0 || result.stats.t_total < best.stats.t_total) best = std::move(result);
+      }
+      const auto& s = best.stats;
+      const auto validity = meshd::check_validity(best.mesh);
+      std::printf("| %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %lld | %.3f | %.3f | %.3f | "
+                  "%.3f | %.3f | %.4f | %.1f |%s\n",
+                  name.c_str(), best.mesh.points.size(), best.mesh.triangles.size(), s.levels,
+                  s.iterations + s.cleanup_iterations, s.equivalent_iterations,
+                  s.retriangulations, s.retriangulations - s.full_triangulations,
+                  s.full_triangulations, static_cast<long long>(s.flips), s.t_triangulation,
+                  s.t_forces, s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
+                  best.quality.min_angle_deg,
+                  validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
+      if (!validity.problems.empty() || !s.converged) ++failures;
+      for (const std::string& out : opt.outputs) {
+        const std::string file = expand(out, name);
+        meshd::write_mesh_file(best.mesh, file, meshd::format_from_path(file));
+      }
+    } catch (const meshd::Error& e) {
+      std::fprintf(stderr, "meshbench: %s: %s: %s\n", path.c_str(), meshd::error_code_name(e.code()),
+                   e.what());
+      ++failures;
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}

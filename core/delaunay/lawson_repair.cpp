@@ -1,0 +1,96 @@
+#include "core/delaunay/lawson_repair.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <utility>
+
+namespace meshd {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_2;
+
+Point to_cgal(Vec2 p) { return Point(p.x, p.y); }
+
+// Index of `value` in triangle t's neighbour list.
+int slot_of(const std::array<int32_t, 3>& neighbors, int32_t value) {
+  return neighbors[0] == value ? 0 : (neighbors[1] == value ? 1 : 2);
+}
+
+// Removes the triangles marked in `drop`, renumbering the rest; their neighbours see -1.
+void drop_triangles(Triangulation& tri, const std::vector<char>& drop) {
+  std::vector<int32_t> new_index(tri.triangles.size(), -1);
+  int32_t next = 0;
+  for (size_t t = 0; t < tri.triangles.size(); ++t)
+    if (!drop[t]) new_index[t] = next++;
+  for (size_t t = 0; t < tri.triangles.size(); ++t) {
+    if (drop[t]) continue;
+    tri.triangles[new_index[t]] = tri.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u = tri.neighbors[t][k];
+      tri.neighbors[new_index[t]][k] = u < 0 ? -1 : new_index[u];
+    }
+  }
+  tri.triangles.resize(next);
+  tri.neighbors.resize(next);
+}
+
+}  // namespace
+
+int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
+                      Triangulation& tri) {
+  std::vector<char> drop(tri.triangles.size(), 0);
+  bool any_dropped = false;
+  for (size_t i = 0; i < tri.triangles.size(); ++i) {
+    const auto& t = tri.triangles[i];
+    if (CGAL::orientation(to_cgal(points[t[0]]), to_cgal(points[t[1]]), to_cgal(points[t[2]])) ==
+        CGAL::LEFT_TURN)
+      continue;
+    if (keep[i]) return -1;
+    drop[i] = 1;
+    any_dropped = true;
+  }
+  if (any_dropped) drop_triangles(tri, drop);
+  auto& T = tri.triangles;
+  auto& N = tri.neighbors;
+
+  // (triangle, slot) pairs whose opposite edge may fail the in-circle test. Entries can go stale
+  // after flips; they then name another edge of that triangle, which is merely checked again.
+  std::vector<std::pair<int32_t, int>> stack;
+  stack.reserve(3 * T.size() / 2);
+  for (size_t t = 0; t < T.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (N[t][k] > static_cast<int32_t>(t)) stack.emplace_back(static_cast<int32_t>(t), k);
+
+  int64_t flips = 0;
+  while (!stack.empty()) {
+    const auto [t, k] = stack.back();
+    stack.pop_back();
+    const int32_t u = N[t][k];
+    if (u < 0) continue;
+    const int j = slot_of(N[u], t);
+    // t = [a, b, c] counter-clockwise with a opposite the shared edge; u = [d, c, b].
+    const int32_t a = T[t][k], b = T[t][(k + 1) % 3], c = T[t][(k + 2) % 3], d = T[u][j];
+    if (CGAL::side_of_oriented_circle(to_cgal(points[a]), to_cgal(points[b]),
+                                      to_cgal(points[c]),
+                                      to_cgal(points[d])) != CGAL::ON_POSITIVE_SIDE)
+      continue;
+    // Flip bc to ad: t' = [a, b, d], u' = [a, d, c].
+    const int32_t n_ab = N[t][(k + 2) % 3], n_ca = N[t][(k + 1) % 3];
+    const int32_t n_bd = N[u][(j + 1) % 3], n_dc = N[u][(j + 2) % 3];
+    T[t] = {a, b, d};
+    N[t] = {n_bd, u, n_ab};
+    T[u] = {a, d, c};
+    N[u] = {n_dc, n_ca, t};
+    if (n_bd >= 0) N[n_bd][slot_of(N[n_bd], u)] = t;
+    if (n_ca >= 0) N[n_ca][slot_of(N[n_ca], t)] = u;
+    ++flips;
+    stack.emplace_back(t, 0);
+    stack.emplace_back(t, 2);
+    stack.emplace_back(u, 0);
+    stack.emplace_back(u, 1);
+  }
+  return flips;
+}
+
+}  // namespace meshd

@@ -1,0 +1,25 @@
+// Repair of a Delaunay triangulation whose points moved a little, by Lawson's edge flips.
+//
+// DistMesh retriangulates after every ttol * h0 of drift, yet consecutive triangulations differ
+// in well under 1% of their triangles. As long as no triangle became inverted, flipping every
+// edge that fails the in-circle test until none does reaches the Delaunay triangulation of the
+// new positions (in 2D Lawson's algorithm cannot get stuck). The predicates are CGAL's filtered
+// exact ones, so nearly co-circular quadruples never make it cycle.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/delaunay/delaunay.h"
+
+namespace meshd {
+
+// Flips edges of `tri` (triangles and neighbours updated in place) until it is Delaunay for
+// `points` (#N by 2). Triangles outside the domain (keep[t] == 0, #M) that turned over or flat
+// are dropped first: DistMesh throws them away anyway, and the rest stays a valid triangulation
+// of a smaller region. Returns the number of flips, or -1 without changing anything when a kept
+// triangle is inverted or flat: then the caller must triangulate from scratch.
+int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
+                      Triangulation& tri);
+
+}  // namespace meshd
