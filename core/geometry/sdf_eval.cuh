@@ -54,9 +54,11 @@ MESHD_HD inline double sdf_polygon(const double* q, Vec2 p) {
 }
 
 // Distance from (y0, y1), y >= 0, to the ellipse with semi axes e0 >= e1 > 0 (Eberly's
-// formulation). The closest point satisfies x_i = r_i y_i / (s + r_i); s is the root of the
-// convex, decreasing G below, found by Newton's method kept inside a bracket: it converges
-// monotonically from the left, and bisection takes over whenever a step would leave the bracket.
+// formulation, in the variable t = s + 1). The closest point is x0 = r0 y0 / (t + r0 - 1),
+// x1 = y1 / t, with t the root of the convex, decreasing G below. Solving for t itself rather
+// than for s = t - 1 keeps full relative precision when the point lies near the major axis,
+// where t is as small as y1. Newton's method from the left end of the bracket converges
+// monotonically; bisection takes over whenever a step would leave the bracket.
 MESHD_HD inline double ellipse_distance_quadrant(double e0, double e1, double y0, double y1) {
   if (y1 > 0.0) {
     if (y0 > 0.0) {
@@ -64,22 +66,25 @@ MESHD_HD inline double ellipse_distance_quadrant(double e0, double e1, double y0
       const double g = z0 * z0 + z1 * z1 - 1.0;
       if (g == 0.0) return 0.0;
       const double r0 = (e0 / e1) * (e0 / e1);
+      const double c = r0 - 1.0;
       const double n0 = r0 * z0;
-      double lo = z1 - 1.0;                           // G(lo) >= 0
-      double hi = g < 0.0 ? 0.0 : length2d(n0, z1) - 1.0;  // G(hi) <= 0
-      double s = lo;
+      // G(lo) >= 0: one of its two terms is 1 there. Starting at the larger bound keeps Newton
+      // within a small factor of the root (from t = z1 alone a circle needs ~100 steps).
+      double lo = max2(z1, n0 - c);
+      double hi = g < 0.0 ? 1.0 : length2d(n0, z1);    // G(hi) <= 0
+      double t = lo;
       for (int it = 0; it < 100; ++it) {
-        const double a = n0 / (s + r0), b = z1 / (s + 1.0);
+        const double a = n0 / (t + c), b = z1 / t;
         const double G = a * a + b * b - 1.0;
         if (G == 0.0) break;
-        if (G > 0.0) lo = s; else hi = s;
-        const double dG = -2.0 * (a * a / (s + r0) + b * b / (s + 1.0));
-        double next = s - G / dG;
+        if (G > 0.0) lo = t; else hi = t;
+        const double dG = -2.0 * (a * a / (t + c) + b * b / t);
+        double next = t - G / dG;
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (fabs(next - s) <= 1e-15 * max2(1.0, fabs(s))) { s = next; break; }
-        s = next;
+        if (fabs(next - t) <= 1e-15 * t) { t = next; break; }
+        t = next;
       }
-      const double x0 = r0 * y0 / (s + r0), x1 = y1 / (s + 1.0);
+      const double x0 = r0 * y0 / (t + c), x1 = y1 / t;
       return length2d(x0 - y0, x1 - y1);
     }
     return fabs(y1 - e1);

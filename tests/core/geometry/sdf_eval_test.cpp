@@ -242,14 +242,9 @@ TEST_P(EllipseSdf, MatchesBruteForceClosestPoint) {
   EXPECT_EQ(ellipse_mismatches(a, b, queries), 0);
 }
 
-// DISABLED: core bug (reported). ellipse_distance_quadrant solves for s with the closest point
-// x1 = y1 / (s + 1); for points within about 1e-6 of the major axis (relative to the semi axes)
-// the root s is within y1 of -1, so s + 1 cancels catastrophically: the relative error grows as
-// 1e-16 / (y / b), 1e-2 at y = 1e-14 b, and below y = 1.1e-16 b the result is meaningless
-// (2:1 ellipse at (2.01, 1e-16): 0.807 instead of 0.01; unit circle at (1.5, 1e-16): 6.8e15).
-// Points near the centre lose accuracy the same way (2e-4 relative at 1e-9 from the centre).
-// Rotated ellipses hit it on their axes, where the local y is rounding noise (see below).
-TEST_P(EllipseSdf, DISABLED_NearTheMajorAxisAndTheCentre) {
+// Regression: the solve once ran in s = t - 1, and s + 1 cancelled near the major axis (2:1
+// ellipse at (2.01, 1e-16) gave 0.807 instead of 0.01) and near the centre.
+TEST_P(EllipseSdf, NearTheMajorAxisAndTheCentre) {
   const auto [a, b] = GetParam();
   const auto queries =
       ellipse_queries(a, b, static_cast<uint64_t>(a * 1000 + b) + 1,
@@ -264,11 +259,10 @@ INSTANTIATE_TEST_SUITE_P(Shapes, EllipseSdf,
                                            EllipseCase{1, 10}, EllipseCase{0.3, 0.05}),
                          ellipse_case_name);
 
-// DISABLED: the same core bug through a rotation: on the major axis of a rotated ellipse the
-// local coordinate across the axis is rounding noise (1e-17 instead of 0), and the distance is
-// wrong by O(1), outside the ellipse too, where the mesher projects nodes onto the boundary.
+// Regression: the same through a rotation, where the local coordinate across the major axis is
+// rounding noise (1e-17 instead of 0), outside the ellipse too, where nodes are projected.
 // Example: the 2:1 ellipse rotated by 0.3 about (0.3, -0.7), at centre + 2.5 * major axis.
-TEST(SdfEval, DISABLED_RotatedEllipseOnItsMajorAxis) {
+TEST(SdfEval, RotatedEllipseOnItsMajorAxis) {
   const Vec2 centre{0.3, -0.7};
   int failures = 0;
   for (double angle : {0.3, 1.0, kPi / 3, 2.5, -0.8}) {
