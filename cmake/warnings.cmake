@@ -2,6 +2,10 @@
 add_library(meshd_warnings INTERFACE)
 add_library(meshd::warnings ALIAS meshd_warnings)
 set(meshd_warning_flags -Wall -Wextra -Wshadow)
+# GCC 12's -Wrestrict misfires inside libstdc++'s string concatenation at -O3 (GCC bug 105329).
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  list(APPEND meshd_warning_flags -Wno-restrict)
+endif()
 if(MESHD_WERROR)
   list(APPEND meshd_warning_flags -Werror)
 endif()

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the Debian packages meshd builds, tests and runs with, when any is missing.
+# The CUDA toolkit is not installed here: the GPU engine is built only where nvcc exists.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
+  libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
+  python3 python3-meshio python3-grpcio python3-protobuf gmsh
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "install_deps: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
