@@ -1,16 +1,11 @@
 #include "core/delaunay/lawson_repair.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <utility>
+
+#include "core/delaunay/exact_predicates.h"
 
 namespace meshd {
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_2;
-
-Point to_cgal(Vec2 p) { return Point(p.x, p.y); }
 
 // Index of `value` in triangle t's neighbour list.
 int slot_of(const std::array<int32_t, 3>& neighbors, int32_t value) {
@@ -43,9 +38,7 @@ int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& 
   bool any_dropped = false;
   for (size_t i = 0; i < tri.triangles.size(); ++i) {
     const auto& t = tri.triangles[i];
-    if (CGAL::orientation(to_cgal(points[t[0]]), to_cgal(points[t[1]]), to_cgal(points[t[2]])) ==
-        CGAL::LEFT_TURN)
-      continue;
+    if (orientation_sign(points[t[0]], points[t[1]], points[t[2]]) > 0) continue;
     if (keep[i]) return -1;
     drop[i] = 1;
     any_dropped = true;
@@ -71,10 +64,7 @@ int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& 
     const int j = slot_of(N[u], t);
     // t = [a, b, c] counter-clockwise with a opposite the shared edge; u = [d, c, b].
     const int32_t a = T[t][k], b = T[t][(k + 1) % 3], c = T[t][(k + 2) % 3], d = T[u][j];
-    if (CGAL::side_of_oriented_circle(to_cgal(points[a]), to_cgal(points[b]),
-                                      to_cgal(points[c]),
-                                      to_cgal(points[d])) != CGAL::ON_POSITIVE_SIDE)
-      continue;
+    if (in_circle_sign(points[a], points[b], points[c], points[d]) <= 0) continue;
     // Flip bc to ad: t' = [a, b, d], u' = [a, d, c].
     const int32_t n_ab = N[t][(k + 2) % 3], n_ca = N[t][(k + 1) % 3];
     const int32_t n_bd = N[u][(j + 1) % 3], n_dc = N[u][(j + 2) % 3];
