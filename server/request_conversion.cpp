@@ -352,6 +352,8 @@ Params params(const v1::MeshRequest& request) {
     out.max_iterations = in_range(in.max_iterations(), 1, 1'000'000, "params.max_iterations");
   }
   if (in.has_cleanup()) out.cleanup = in.cleanup();
+  if (in.has_multilevel())
+    out.multilevel = in.multilevel() ? Params::Multilevel::kOn : Params::Multilevel::kOff;
   if (in.has_momentum()) out.momentum = in_range(in.momentum(), 0, false, 0.9, "params.momentum");
   return out;
 }

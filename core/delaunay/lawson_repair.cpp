@@ -33,13 +33,13 @@ void drop_triangles(Triangulation& tri, const std::vector<char>& drop) {
 }  // namespace
 
 int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
-                      Triangulation& tri) {
+                      const std::vector<char>& on_boundary, Triangulation& tri) {
   std::vector<char> drop(tri.triangles.size(), 0);
   bool any_dropped = false;
   for (size_t i = 0; i < tri.triangles.size(); ++i) {
     const auto& t = tri.triangles[i];
     if (orientation_sign(points[t[0]], points[t[1]], points[t[2]]) > 0) continue;
-    if (keep[i]) return -1;
+    if (keep[i] && !(on_boundary[t[0]] && on_boundary[t[1]] && on_boundary[t[2]])) return -1;
     drop[i] = 1;
     any_dropped = true;
   }

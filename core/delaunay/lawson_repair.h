@@ -15,11 +15,13 @@
 namespace meshd {
 
 // Flips edges of `tri` (triangles and neighbours updated in place) until it is Delaunay for
-// `points` (#N by 2). Triangles outside the domain (keep[t] == 0, #M) that turned over or flat
-// are dropped first: DistMesh throws them away anyway, and the rest stays a valid triangulation
-// of a smaller region. Returns the number of flips, or -1 without changing anything when a kept
-// triangle is inverted or flat: then the caller must triangulate from scratch.
+// `points` (#N by 2). Triangles that turned over or flat are dropped first when they are
+// expendable: outside the domain (keep[t] == 0, #M), or slivers with all three nodes on the
+// boundary (on_boundary, #N), which collapse when their middle node is projected back onto a
+// convex curve. DistMesh discards both anyway, and the rest stays a valid triangulation of a
+// slightly smaller region. Returns the number of flips, or -1 without changing anything when
+// any other triangle is inverted or flat: then the caller must triangulate from scratch.
 int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
-                      Triangulation& tri);
+                      const std::vector<char>& on_boundary, Triangulation& tri);
 
 }  // namespace meshd

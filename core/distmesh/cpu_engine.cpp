@@ -14,6 +14,9 @@ namespace {
 
 // Fixed chunk sizes keep reductions independent of the thread count (thread_pool.h).
 constexpr size_t kChunk = 8192;
+// Nodes this close to the boundary (times h0) count as boundary nodes for the triangulation
+// repair: a kept triangle of three of them that turns over is a boundary sliver collapsing.
+constexpr double kNearBoundary = 0.05;
 
 }  // namespace
 
@@ -51,11 +54,7 @@ int64_t CpuEngine::initialize(const CompiledProblem& problem) {
       near_fixed = norm(q - p_[f]) < 0.5 * h0 * size[k];
     if (!near_fixed) p_.push_back(q);
   }
-  pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
-  velocity_.assign(p_.size(), Vec2{});
-  dt_ = {};
-  triangles_.clear();
-  bars_.clear();
+  reset_node_state();
   return node_count();
 }
 
@@ -63,11 +62,7 @@ int64_t CpuEngine::load_points(const CompiledProblem& problem, const std::vector
   problem_ = &problem;
   p_ = points;
   nfix_ = static_cast<int64_t>(problem.fixed_points.size());
-  pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
-  velocity_.assign(p_.size(), Vec2{});
-  dt_ = {};
-  triangles_.clear();
-  bars_.clear();
+  reset_node_state();
   return node_count();
 }
 
@@ -77,7 +72,7 @@ TopologyStats CpuEngine::retriangulate(bool full) {
   TopologyStats stats;
   stats.full = full || dt_.triangles.empty();
   if (!stats.full) {
-    stats.flips = lawson_repair(p_, dt_keep_, dt_);
+    stats.flips = lawson_repair(p_, dt_keep_, on_boundary_, dt_);
     if (stats.flips < 0) {
       // A triangle turned over since the last triangulation: flips cannot repair that.
       stats.flips = 0;
@@ -188,8 +183,15 @@ void CpuEngine::keep_points(const std::vector<char>& remove) {
   for (size_t i = 0; i < p_.size(); ++i)
     if (!remove[i]) p_[out++] = p_[i];
   p_.resize(out);
-  pold_.assign(out, Vec2{INFINITY, INFINITY});
-  velocity_.assign(out, Vec2{});
+  reset_node_state();
+}
+
+void CpuEngine::reset_node_state() {
+  pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
+  velocity_.assign(p_.size(), Vec2{});
+  on_boundary_.assign(p_.size(), 0);
+  for (int64_t f = 0; f < nfix_; ++f)
+    on_boundary_[f] = eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundary * problem_->h0;
   dt_ = {};
   triangles_.clear();
   bars_.clear();
@@ -238,6 +240,7 @@ StepResult CpuEngine::move_points() {
       Vec2 q = p_[i] + step;
       const double d = eval_sdf(fd, q);
       if (d > 0.0) q = project_step(fd, q, d, deps);
+      on_boundary_[i] = d >= -kNearBoundary * h0;
       if (d < -geps) {
         sq += dot(step, step);
         ++interior;

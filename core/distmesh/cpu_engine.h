@@ -40,12 +40,15 @@ class CpuEngine final : public Engine {
   double measure_bars();
   void build_bar_csr();
   void keep_points(const std::vector<char>& remove);
+  // Resets the per-node state after the node set changed.
+  void reset_node_state();
 
   ThreadPool& pool_;
   const CompiledProblem* problem_ = nullptr;
   std::vector<Vec2> p_;      // #N by 2
   std::vector<Vec2> pold_;
-  std::vector<Vec2> velocity_;  // #N by 2, the last step (momentum)   // #N by 2, positions at the last triangulation
+  std::vector<Vec2> velocity_;
+  std::vector<char> on_boundary_;  // #N: near the boundary at the last step (fixed: at load)  // #N by 2, the last step (momentum)   // #N by 2, positions at the last triangulation
   int64_t nfix_ = 0;
   Triangulation dt_;                               // the full Delaunay triangulation
   std::vector<char> dt_keep_;                      // #M of dt_: centroid inside

@@ -27,7 +27,11 @@ constexpr double kCoarsestNodes = 2000.0;
 
 std::vector<CompiledProblem> multilevel_problems(const CompiledProblem& problem) {
   int coarsenings = 0;
-  for (double n = estimate_node_count(problem); n >= 4.0 * kCoarsestNodes; n /= 4.0) ++coarsenings;
+  const Params::Multilevel mode = problem.params.multilevel;
+  const bool on = mode == Params::Multilevel::kOn ||
+                  (mode == Params::Multilevel::kAuto && !problem.size.uniform());
+  const double nodes = on ? estimate_node_count(problem) : 0.0;
+  for (double n = nodes; n >= 4.0 * kCoarsestNodes; n /= 4.0) ++coarsenings;
   std::vector<CompiledProblem> levels;
   for (int k = coarsenings; k >= 0; --k) {
     levels.push_back(problem);
@@ -78,6 +82,10 @@ class Loop {
     if (problem_.params.cleanup) {
       const auto t = Clock::now();
       for (int round = 0; round < kCleanupRounds; ++round) {
+        // The clean-up's relaxation counts against max_iterations too.
+        const int budget = std::min(kCleanupIterations, problem_.params.max_iterations -
+                                                            s.iterations - s.cleanup_iterations);
+        if (budget <= 0) break;
         engine_.read_points(points_);
         engine_.read_triangles(triangles_);
         const auto victims = cleanup_victims(problem_, points_, triangles_);
@@ -85,14 +93,15 @@ class Loop {
         engine_.remove_points(victims);
         s.cleanup_removed += static_cast<int64_t>(victims.size());
         triangulate(true);
-        relax(kCleanupIterations, false, s.cleanup_iterations);
+        relax(budget, false, s.cleanup_iterations);
       }
       s.t_cleanup += seconds_since(t);
     }
 
-    // The points moved a little since the last triangulation: triangulate once more so that the
-    // result is the Delaunay mesh of its own nodes.
-    triangulate(false);
+    // The points moved a little since the last triangulation: triangulate once more, from
+    // scratch, so that the result is the Delaunay mesh of its own nodes (a repaired
+    // triangulation may have dropped collapsed boundary slivers).
+    triangulate(true);
     engine_.read_points(points_);
     engine_.read_triangles(triangles_);
     if (problem_.params.cleanup) {
@@ -151,7 +160,7 @@ class Loop {
       const StepResult step = engine_.move_points();
       stats_.t_forces += seconds_since(t);
       drift_ = step.max_drift;
-      report(iterations, step.max_move);
+      report(stats_.iterations + stats_.cleanup_iterations, step.max_move);
       // 8. Termination (params.h): the interior has settled as a whole and no node still moves
       // far; waiting for the last annealing node to stop costs hundreds of iterations and no
       // quality.
