@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@
 #include "core/mesh/validity.h"
 #include "server/request_conversion.h"
 #include "server/request_file.h"
+#ifdef MESHD_HAVE_CUDA
+#include "kernels/gpu_engine.h"
+#endif
 
 namespace {
 
@@ -35,7 +39,7 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
-               "usage: meshbench [--backend cpu] [--threads T] [--nodes N] [--repeat R]\n"
+               "usage: meshbench [--backend cpu|gpu] [--threads T] [--nodes N] [--repeat R]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
@@ -62,12 +66,26 @@ Options parse(int argc, char** argv) {
     else o.requests.push_back(a);
   }
   if (o.requests.empty()) usage(2);
-  if (o.backend != "cpu") {
-    std::fprintf(stderr, "meshbench: --backend %s is not available in this build (cpu)\n",
-                 o.backend.c_str());
+  if (o.backend != "cpu" && o.backend != "gpu") usage(2);
+#ifndef MESHD_HAVE_CUDA
+  if (o.backend == "gpu") {
+    std::fprintf(stderr, "meshbench: this build has no GPU engine (built without nvcc)\n");
     std::exit(2);
   }
+#endif
   return o;
+}
+
+// The engine for --backend; the GPU one warmed up so that start-up stays out of the table.
+std::unique_ptr<meshd::Engine> make_engine(const Options& o, meshd::ThreadPool& pool) {
+#ifdef MESHD_HAVE_CUDA
+  if (o.backend == "gpu") {
+    auto gpu = std::make_unique<meshd::GpuEngine>(0);
+    gpu->warm_up();
+    return gpu;
+  }
+#endif
+  return std::make_unique<meshd::CpuEngine>(pool);
 }
 
 std::string expand(std::string pattern, const std::string& name) {
@@ -81,9 +99,23 @@ std::string expand(std::string pattern, const std::string& name) {
 int main(int argc, char** argv) {
   const Options opt = parse(argc, argv);
   meshd::ThreadPool pool(opt.threads);
-  std::printf("| request | nodes | triangles | levels | iterations | equiv. iter | retri (repair/full) "
-              "| flips | t_tri s | t_forces s | t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::unique_ptr<meshd::Engine> engine;
+  try {
+    engine = make_engine(opt, pool);
+  } catch (const meshd::Error& e) {
+    std::fprintf(stderr, "meshbench: %s\n", e.what());
+    return 2;
+  }
+#ifdef MESHD_HAVE_CUDA
+  if (opt.backend == "gpu") {
+    std::printf("device: %s; device-to-device copy %.0f GB/s (read + write)\n\n",
+                meshd::gpu_device_name(0).c_str(), meshd::measure_copy_bandwidth(0));
+  }
+#endif
+  std::printf("| request | backend | nodes | triangles | levels | iterations | equiv. iter "
+              "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter "
+              "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   for (const std::string& path : opt.requests) {
     const std::string name = std::filesystem::path(path).stem().string();
@@ -93,19 +125,20 @@ int main(int argc, char** argv) {
       const meshd::CompiledProblem compiled = meshd::compile_problem(problem);
       meshd::MeshResult best;
       for (int r = 0; r < opt.repeat; ++r) {
-        meshd::CpuEngine engine(pool);
-        meshd::MeshResult result = meshd::generate_mesh(compiled, engine, nullptr, nullptr);
+        meshd::MeshResult result = meshd::generate_mesh(compiled, *engine, nullptr, nullptr);
         if (r == 0 || result.stats.t_total < best.stats.t_total) best = std::move(result);
       }
       const auto& s = best.stats;
       const auto validity = meshd::check_validity(best.mesh);
-      std::printf("| %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %lld | %.3f | %.3f | %.3f | "
-                  "%.3f | %.3f | %.4f | %.1f |%s\n",
-                  name.c_str(), best.mesh.points.size(), best.mesh.triangles.size(), s.levels,
-                  s.iterations + s.cleanup_iterations, s.equivalent_iterations,
+      const int steps = s.iterations + s.cleanup_iterations;
+      std::printf("| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d | %lld | %.3f | %.3f "
+                  "| %.1f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
+                  name.c_str(), engine->name(), best.mesh.points.size(),
+                  best.mesh.triangles.size(), s.levels, steps, s.equivalent_iterations,
                   s.retriangulations, s.retriangulations - s.full_triangulations,
-                  s.full_triangulations, static_cast<long long>(s.flips), s.t_triangulation,
-                  s.t_forces, s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
+                  s.full_triangulations, s.repair_fallbacks, static_cast<long long>(s.flips),
+                  s.t_triangulation, s.t_forces, steps > 0 ? 1e6 * s.t_forces / steps : 0.0,
+                  s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
                   best.quality.min_angle_deg,
                   validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
       if (!validity.problems.empty() || !s.converged) ++failures;

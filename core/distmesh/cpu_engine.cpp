@@ -14,9 +14,6 @@ namespace {
 
 // Fixed chunk sizes keep reductions independent of the thread count (thread_pool.h).
 constexpr size_t kChunk = 8192;
-// Nodes this close to the boundary (times h0) count as boundary nodes for the triangulation
-// repair: a kept triangle of three of them that turns over is a boundary sliver collapsing.
-constexpr double kNearBoundary = 0.05;
 
 }  // namespace
 
@@ -191,7 +188,7 @@ void CpuEngine::reset_node_state() {
   velocity_.assign(p_.size(), Vec2{});
   on_boundary_.assign(p_.size(), 0);
   for (int64_t f = 0; f < nfix_; ++f)
-    on_boundary_[f] = eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundary * problem_->h0;
+    on_boundary_[f] = eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundaryRelative * problem_->h0;
   dt_ = {};
   triangles_.clear();
   bars_.clear();
@@ -240,7 +237,7 @@ StepResult CpuEngine::move_points() {
       Vec2 q = p_[i] + step;
       const double d = eval_sdf(fd, q);
       if (d > 0.0) q = project_step(fd, q, d, deps);
-      on_boundary_[i] = d >= -kNearBoundary * h0;
+      on_boundary_[i] = d >= -kNearBoundaryRelative * h0;
       if (d < -geps) {
         sq += dot(step, step);
         ++interior;

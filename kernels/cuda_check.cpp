@@ -1,0 +1,26 @@
+#include "kernels/cuda_check.h"
+
+#include <string>
+
+#include "core/common/error.h"
+
+namespace meshd::gpu {
+
+void throw_cuda_error(cudaError_t error, const char* call, const char* file, int line) {
+  cudaGetLastError();  // clear a sticky-free error so that the next job starts clean
+  const ErrorCode code =
+      error == cudaErrorMemoryAllocation ? ErrorCode::kResourceExhausted : ErrorCode::kInternal;
+  throw Error(code, "", std::string("CUDA ") + cudaGetErrorName(error) + " (" +
+                            cudaGetErrorString(error) + ") in " + call + " at " + file + ":" +
+                            std::to_string(line));
+}
+
+void check_launch(const char* kernel, const char* file, int line) {
+  cudaError_t error = cudaGetLastError();
+#ifdef MESHD_CUDA_SYNC_LAUNCHES
+  if (error == cudaSuccess) error = cudaDeviceSynchronize();
+#endif
+  if (error != cudaSuccess) throw_cuda_error(error, kernel, file, line);
+}
+
+}  // namespace meshd::gpu

@@ -1,0 +1,567 @@
+#include "kernels/gpu_engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/common/error.h"
+#include "core/delaunay/delaunay.h"
+#include "core/delaunay/exact_predicates.h"
+#include "core/geometry/sdf_eval.cuh"
+#include "kernels/device_buffer.h"
+#include "kernels/launch.h"
+#include "kernels/scan.h"
+
+namespace meshd {
+
+using gpu::Bar;
+using gpu::BarSums;
+using gpu::StepSums;
+using gpu::DeviceBuffer;
+using gpu::Tri;
+
+namespace {
+
+// Undecided in-circle tests a round may hand to the host; more means a rebuild.
+constexpr int32_t kMaxUndecided = 4096;
+// A repair that needs more rounds than this is pathological: rebuild instead.
+constexpr int kMaxFlipRounds = 200;
+
+// Pinned host memory for the few scalars read every step.
+template <typename T>
+class PinnedValue {
+ public:
+  PinnedValue() { MESHD_CUDA_CHECK(cudaMallocHost(&ptr_, sizeof(T))); }
+  ~PinnedValue() { cudaFreeHost(ptr_); }
+  PinnedValue(const PinnedValue&) = delete;
+  PinnedValue& operator=(const PinnedValue&) = delete;
+  T* get() const { return ptr_; }
+
+ private:
+  T* ptr_ = nullptr;
+};
+
+int bits_for(int64_t n) {
+  int bits = 1;
+  while ((int64_t{1} << bits) < n) ++bits;
+  return bits;
+}
+
+}  // namespace
+
+int gpu_device_count() {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return count;
+}
+
+std::string gpu_device_name(int device) {
+  cudaDeviceProp prop{};
+  MESHD_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));
+  return prop.name;
+}
+
+double measure_copy_bandwidth(int device) {
+  MESHD_CUDA_CHECK(cudaSetDevice(device));
+  constexpr size_t kBytes = size_t{512} << 20;
+  DeviceBuffer<uint8_t> a, b;
+  a.resize(kBytes);
+  b.resize(kBytes);
+  MESHD_CUDA_CHECK(cudaMemset(a.data(), 1, kBytes));
+  cudaEvent_t start, stop;
+  MESHD_CUDA_CHECK(cudaEventCreate(&start));
+  MESHD_CUDA_CHECK(cudaEventCreate(&stop));
+  std::vector<float> ms;
+  for (int i = 0; i < 11; ++i) {
+    MESHD_CUDA_CHECK(cudaEventRecord(start));
+    MESHD_CUDA_CHECK(cudaMemcpy(b.data(), a.data(), kBytes, cudaMemcpyDeviceToDevice));
+    MESHD_CUDA_CHECK(cudaEventRecord(stop));
+    MESHD_CUDA_CHECK(cudaEventSynchronize(stop));
+    float t = 0;
+    MESHD_CUDA_CHECK(cudaEventElapsedTime(&t, start, stop));
+    if (i > 0) ms.push_back(t);
+  }
+  cudaEventDestroy(start);
+  cudaEventDestroy(stop);
+  std::sort(ms.begin(), ms.end());
+  return 2.0 * kBytes / (ms[ms.size() / 2] * 1e-3) / 1e9;
+}
+
+int64_t GpuEngine::device_allocations() { return gpu::AllocationStats::mallocs().load(); }
+
+// ---- State ----------------------------------------------------------------------------------------
+
+struct GpuEngine::Impl {
+  int device = 0;
+  cudaStream_t stream = nullptr;
+  const CompiledProblem* problem = nullptr;
+
+  // The programs, on the device.
+  DeviceBuffer<Instruction> geometry_code, size_code;
+  DeviceBuffer<double> geometry_params, size_params;
+  DeviceBuffer<SizeTermCode> size_terms;
+  ProgramView fd{};
+  SizeView fh{};
+  bool uniform = true;
+
+  // Nodes (fixed first).
+  int64_t n = 0, nfix = 0;
+  DeviceBuffer<Vec2> p, p_next, p_old, velocity, fixed;
+  DeviceBuffer<uint8_t> on_boundary;
+
+  // Triangulation: all Delaunay triangles, their neighbours, the kept flags, the bars and CSR.
+  bool have_triangulation = false;
+  DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
+  DeviceBuffer<uint8_t> keep, flags;
+  DeviceBuffer<int32_t> vote, flipped_round, partner, undecided, position, count;
+  int32_t round = 0;
+  DeviceBuffer<Bar> bars;
+  DeviceBuffer<double> length, size, scale, grid_size;
+  DeviceBuffer<int32_t> csr_offset, csr_entry, key, key_sorted, value, degree;
+  DeviceBuffer<BarSums> bar_partial;
+  DeviceBuffer<StepSums> step_partial;
+  DeviceBuffer<gpu::StepSums> step_sums;
+  DeviceBuffer<gpu::TopologyCounters> counters;
+  DeviceBuffer<unsigned long long> h_min_bits;
+  DeviceBuffer<uint8_t> temp;
+  PinnedValue<gpu::StepSums> h_step;
+  PinnedValue<gpu::TopologyCounters> h_counters;
+  PinnedValue<int32_t> h_ints;  // two ints: last position and last flag/count
+
+  void sync() { MESHD_CUDA_CHECK(cudaStreamSynchronize(stream)); }
+  void use_device() { MESHD_CUDA_CHECK(cudaSetDevice(device)); }
+
+  void load_problem(const CompiledProblem& prob) {
+    problem = &prob;
+    geometry_code.upload(prob.geometry.code.data(), prob.geometry.code.size(), stream);
+    geometry_params.upload(prob.geometry.params.data(), prob.geometry.params.size(), stream);
+    size_code.upload(prob.size.shapes.code.data(), prob.size.shapes.code.size(), stream);
+    size_params.upload(prob.size.shapes.params.data(), prob.size.shapes.params.size(), stream);
+    size_terms.upload(prob.size.terms.data(), prob.size.terms.size(), stream);
+    fd = {geometry_code.data(), static_cast<uint32_t>(prob.geometry.code.size()),
+          geometry_params.data()};
+    fh = {{size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()),
+           size_params.data()},
+          size_terms.data(), static_cast<uint32_t>(prob.size.terms.size())};
+    uniform = prob.size.uniform();
+    nfix = static_cast<int64_t>(prob.fixed_points.size());
+    fixed.upload(prob.fixed_points.data(), prob.fixed_points.size(), stream);
+  }
+
+  // After the node set changed: no momentum, no triangulation, drift "infinite".
+  void reset_node_state() {
+    p_next.resize(n);
+    p_old.resize(n);
+    velocity.resize(n);
+    on_boundary.resize(n);
+    if (n > 0) {
+      MESHD_CUDA_CHECK(cudaMemsetAsync(p_old.data(), 0x7f, n * sizeof(Vec2), stream));  // ~1e306
+      MESHD_CUDA_CHECK(cudaMemsetAsync(velocity.data(), 0, n * sizeof(Vec2), stream));
+      MESHD_CUDA_CHECK(cudaMemsetAsync(on_boundary.data(), 0, n, stream));
+    }
+    // Fixed nodes never move: classify them once, on the host.
+    std::vector<uint8_t> fixed_boundary(nfix);
+    const double near = kNearBoundaryRelative * problem->h0;
+    for (int64_t f = 0; f < nfix; ++f)
+      fixed_boundary[f] = eval_sdf(problem->geometry.view(), problem->fixed_points[f]) >= -near;
+    if (nfix > 0)
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(on_boundary.data(), fixed_boundary.data(), nfix,
+                                       cudaMemcpyHostToDevice, stream));
+    have_triangulation = false;
+    bars.resize(0);
+    sync();  // fixed_boundary is a stack buffer
+  }
+
+  // Keeps the nodes with flags[i] = 1, in order. Returns how many went.
+  int64_t compact_nodes() {
+    position.resize(n);
+    gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
+    const int64_t kept = last_total(position, flags);
+    gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
+    std::swap(p, p_next);
+    const int64_t removed = n - kept;
+    n = kept;
+    p.resize(n);
+    reset_node_state();
+    return removed;
+  }
+
+  // position[last] + flag[last]: the total of an exclusive scan.
+  int64_t last_total(const DeviceBuffer<int32_t>& scanned, const DeviceBuffer<uint8_t>& flag) {
+    if (scanned.size() == 0) return 0;
+    const size_t last = scanned.size() - 1;
+    uint8_t last_flag = 0;
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_ints.get(), scanned.data() + last, sizeof(int32_t),
+                                     cudaMemcpyDeviceToHost, stream));
+    MESHD_CUDA_CHECK(
+        cudaMemcpyAsync(&last_flag, flag.data() + last, 1, cudaMemcpyDeviceToHost, stream));
+    sync();
+    return *h_ints.get() + last_flag;
+  }
+
+  void measure_bars() {
+    const int64_t nb = static_cast<int64_t>(bars.size());
+    length.resize(nb);
+    size.resize(nb);
+    bar_partial.resize(gpu::blocks_for(nb));
+    scale.resize(1);
+    gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
+                             bar_partial.span(), stream);
+    gpu::launch_finish_scale(bar_partial.span(), problem->params.fscale, scale.data(), stream);
+  }
+
+  // ---- Step 3 ----
+
+  void full_triangulation() {
+    std::vector<Vec2> host(n);
+    p.download(host.data(), stream);
+    sync();
+    const Triangulation dt = delaunay_triangulate(host);
+    static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
+    tris.upload(reinterpret_cast<const Tri*>(dt.triangles.data()), dt.triangles.size(), stream);
+    nbrs.upload(reinterpret_cast<const Tri*>(dt.neighbors.data()), dt.neighbors.size(), stream);
+    flipped_round.resize(tris.size());
+    MESHD_CUDA_CHECK(
+        cudaMemsetAsync(flipped_round.data(), 0xff, flipped_round.size() * sizeof(int32_t), stream));
+  }
+
+  void reset_counters() {
+    counters.resize(1);
+    MESHD_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, sizeof(gpu::TopologyCounters), stream));
+  }
+  const gpu::TopologyCounters& read_counters() {
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_counters.get(), counters.data(),
+                                     sizeof(gpu::TopologyCounters), cudaMemcpyDeviceToHost, stream));
+    sync();
+    return *h_counters.get();
+  }
+
+  // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed.
+  int64_t repair() {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped.
+    flags.resize(m);
+    reset_counters();
+    gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
+                                  flags.span(), counters.data(), stream);
+    const gpu::TopologyCounters c = read_counters();
+    if (c.fatal > 0) return -1;
+    if (c.dropped > 0) {
+      position.resize(m);
+      gpu::exclusive_scan(flags.data(), position.data(), m, temp, stream);
+      const int64_t alive = m - c.dropped;
+      tris_tmp.resize(alive);
+      nbrs_tmp.resize(alive);
+      gpu::launch_compact_triangles(tris.span(), nbrs.span(), flags.span(), position.span(),
+                                    tris_tmp.span(), nbrs_tmp.span(), stream);
+      // Copy back rather than swap, so that tris keeps the largest capacity (the arena).
+      tris.resize(alive);
+      nbrs.resize(alive);
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(tris.data(), tris_tmp.data(), alive * sizeof(Tri),
+                                       cudaMemcpyDeviceToDevice, stream));
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(nbrs.data(), nbrs_tmp.data(), alive * sizeof(Tri),
+                                       cudaMemcpyDeviceToDevice, stream));
+      flipped_round.resize(alive);
+      MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
+    }
+    const int64_t mt = static_cast<int64_t>(tris.size());
+    vote.resize(mt);
+    partner.resize(mt);
+    undecided.resize(kMaxUndecided);
+    int64_t flips = 0;
+    for (int r = 0; r < kMaxFlipRounds; ++r) {
+      ++round;
+      MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
+      reset_counters();
+      gpu::launch_flip_candidates(p.span(), tris.span(), nbrs.span(), vote.span(),
+                                  undecided.span(), counters.data(), stream);
+      gpu::TopologyCounters rc = read_counters();
+      if (rc.undecided > kMaxUndecided) return -1;
+      if (rc.undecided > 0) rc.candidates += decide_on_host(rc.undecided);
+      if (rc.candidates == 0) return flips;
+      gpu::launch_flip(tris.span(), nbrs.span(), vote.span(), flipped_round.span(), partner.span(),
+                       round, counters.data(), stream);
+      gpu::launch_relink(tris.span(), nbrs.span(), flipped_round.span(), partner.span(), round,
+                         stream);
+      flips += read_counters().flips;
+    }
+    return -1;
+  }
+
+  // The exact fallback: in-circle tests the filter left undecided, on the host with CGAL's exact
+  // predicates. Votes for the edges that must flip; returns how many.
+  int32_t decide_on_host(int32_t undecided_count) {
+    std::vector<int32_t> ids(undecided_count);
+    std::vector<Vec2> host_p(n);
+    std::vector<Tri> host_t(tris.size()), host_n(nbrs.size());
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(ids.data(), undecided.data(), undecided_count * sizeof(int32_t),
+                                     cudaMemcpyDeviceToHost, stream));
+    p.download(host_p.data(), stream);
+    tris.download(host_t.data(), stream);
+    nbrs.download(host_n.data(), stream);
+    sync();
+    std::vector<int32_t> flip_ids;
+    for (int32_t id : ids) {
+      const int32_t t = id / 3, k = id % 3, u = host_n[t].v[k];
+      const Tri& tri = host_t[t];
+      int j = 0;
+      while (host_n[u].v[j] != t) ++j;
+      const Vec2 d = host_p[host_t[u].v[j]];
+      if (in_circle_sign(host_p[tri.v[k]], host_p[tri.v[(k + 1) % 3]], host_p[tri.v[(k + 2) % 3]],
+                         d) > 0)
+        flip_ids.push_back(id);
+    }
+    DeviceBuffer<int32_t>& edges = count_buffer();
+    edges.upload(flip_ids.data(), flip_ids.size(), stream);
+    gpu::launch_vote_edges(edges.span(), nbrs.span(), vote.span(), stream);
+    sync();  // flip_ids is a host vector
+    return static_cast<int32_t>(flip_ids.size());
+  }
+  DeviceBuffer<int32_t>& count_buffer() { return count; }
+
+  TopologyStats filter_and_bars() {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    const double geps = problem->params.geps * problem->h0;
+    keep.resize(m);
+    gpu::launch_centroid_filter(p.span(), tris.span(), fd, geps, keep.span(), stream);
+    count.resize(m);
+    position.resize(m);
+    gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
+    gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
+    int64_t nb = 0;
+    if (m > 0) {
+      int32_t last[2];
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[0], position.data() + m - 1, sizeof(int32_t),
+                                       cudaMemcpyDeviceToHost, stream));
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[1], count.data() + m - 1, sizeof(int32_t),
+                                       cudaMemcpyDeviceToHost, stream));
+      sync();
+      nb = last[0] + last[1];
+    }
+    bars.resize(nb);
+    gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
+                           stream);
+    // CSR of bar ends by node; the stable sort keeps each node's bars in bar order.
+    key.resize(2 * nb);
+    key_sorted.resize(2 * nb);
+    value.resize(2 * nb);
+    csr_entry.resize(2 * nb);
+    degree.resize(n + 1);
+    csr_offset.resize(n + 1);
+    MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
+    gpu::launch_bar_ends(bars.span(), key.span(), value.span(), degree.span(), stream);
+    gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * nb,
+                    bits_for(n), temp, stream);
+    gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
+                                     cudaMemcpyDeviceToDevice, stream));
+    // Kept triangles, for the stats.
+    int64_t kept = 0;
+    if (m > 0) {
+      flags.resize(m);
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(flags.data(), keep.data(), m, cudaMemcpyDeviceToDevice, stream));
+      position.resize(m);
+      gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
+      kept = last_total(position, keep);
+    }
+    TopologyStats stats;
+    stats.triangles = kept;
+    stats.bars = nb;
+    return stats;
+  }
+};
+
+// ---- Engine interface ---------------------------------------------------------------------------
+
+namespace {
+int checked_device(int device) {
+  const int count = gpu_device_count();
+  if (device < 0 || device >= count) {
+    throw Error(ErrorCode::kUnavailable, "",
+                "no CUDA device " + std::to_string(device) + " (" + std::to_string(count) +
+                    " visible)");
+  }
+  MESHD_CUDA_CHECK(cudaSetDevice(device));
+  return device;
+}
+}  // namespace
+
+GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_unique<Impl>())) {
+  impl_->device = device;
+  impl_->use_device();
+  MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));
+}
+
+GpuEngine::~GpuEngine() {
+  if (impl_ && impl_->stream) {
+    cudaSetDevice(impl_->device);
+    cudaStreamDestroy(impl_->stream);
+  }
+}
+
+int GpuEngine::device() const { return impl_->device; }
+int64_t GpuEngine::node_count() const { return impl_->n; }
+
+int64_t GpuEngine::initialize(const CompiledProblem& problem) {
+  Impl& s = *impl_;
+  s.use_device();
+  s.load_problem(problem);
+  const double geps = problem.params.geps * problem.h0;
+  const InitialGrid grid = make_initial_grid(problem.bbox, problem.h0);
+  const int64_t total = grid.nx * grid.ny;
+  s.grid_size.resize(total);
+  s.h_min_bits.resize(1);
+  MESHD_CUDA_CHECK(cudaMemsetAsync(s.h_min_bits.data(), 0xff, sizeof(unsigned long long), s.stream));
+  gpu::launch_classify_grid(grid, s.fd, s.fh, geps, s.grid_size.span(), s.h_min_bits.data(),
+                            s.stream);
+  s.flags.resize(total);
+  gpu::launch_flag_grid(grid, s.grid_size.span(), s.h_min_bits.data(), problem.seed,
+                        s.fixed.span(), s.flags.span(), s.stream);
+  s.position.resize(total);
+  gpu::exclusive_scan(s.flags.data(), s.position.data(), total, s.temp, s.stream);
+  const int64_t kept = s.last_total(s.position, s.flags);
+  s.n = s.nfix + kept;
+  s.p.resize(s.n);
+  if (s.nfix > 0)
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(s.p.data(), s.fixed.data(), s.nfix * sizeof(Vec2),
+                                     cudaMemcpyDeviceToDevice, s.stream));
+  gpu::launch_scatter_grid(grid, s.flags.span(), s.position.span(), s.p.span(), s.nfix, s.stream);
+  s.reset_node_state();
+  return s.n;
+}
+
+int64_t GpuEngine::load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) {
+  Impl& s = *impl_;
+  s.use_device();
+  s.load_problem(problem);
+  s.n = static_cast<int64_t>(points.size());
+  s.p.upload(points.data(), points.size(), s.stream);
+  s.reset_node_state();
+  return s.n;
+}
+
+TopologyStats GpuEngine::retriangulate(bool full) {
+  Impl& s = *impl_;
+  s.use_device();
+  TopologyStats stats;
+  stats.full = full || !s.have_triangulation;
+  if (!stats.full) {
+    const int64_t flips = s.repair();
+    if (flips < 0) {
+      stats.full = true;
+      stats.repair_failed = true;
+    } else {
+      stats.flips = flips;
+    }
+  }
+  if (stats.full) s.full_triangulation();
+  s.have_triangulation = true;
+  const TopologyStats sizes = s.filter_and_bars();
+  stats.triangles = sizes.triangles;
+  stats.bars = sizes.bars;
+  return stats;
+}
+
+int64_t GpuEngine::remove_crowded_points() {
+  Impl& s = *impl_;
+  s.use_device();
+  s.measure_bars();
+  s.flags.resize(s.n);
+  MESHD_CUDA_CHECK(cudaMemsetAsync(s.flags.data(), 1, s.n, s.stream));
+  gpu::launch_mark_crowded(s.bars.span(), s.length.span(), s.size.span(), s.scale.data(), s.nfix,
+                           s.flags.span(), s.stream);
+  s.position.resize(s.n);
+  gpu::exclusive_scan(s.flags.data(), s.position.data(), s.n, s.temp, s.stream);
+  if (s.last_total(s.position, s.flags) == s.n) return 0;
+  return s.compact_nodes();
+}
+
+void GpuEngine::remove_points(const std::vector<int32_t>& indices) {
+  Impl& s = *impl_;
+  s.use_device();
+  std::vector<uint8_t> keep(s.n, 1);
+  for (int32_t i : indices)
+    if (i >= s.nfix && i < s.n) keep[i] = 0;
+  s.flags.upload(keep.data(), keep.size(), s.stream);
+  s.compact_nodes();
+}
+
+StepResult GpuEngine::move_points() {
+  Impl& s = *impl_;
+  s.use_device();
+  const Params& prm = s.problem->params;
+  const double h0 = s.problem->h0;
+  s.measure_bars();
+  s.step_partial.resize(gpu::blocks_for(s.n));
+  s.step_sums.resize(1);
+  gpu::MoveArgs a{};
+  a.p = s.p.span();
+  a.p_next = s.p_next.span();
+  a.p_old = s.p_old.span();
+  a.velocity = s.velocity.span();
+  a.on_boundary = s.on_boundary.span();
+  a.csr_offset = s.csr_offset.span();
+  a.csr_entry = s.csr_entry.span();
+  a.bars = s.bars.span();
+  a.length = s.length.span();
+  a.size = s.size.span();
+  a.scale = s.scale.data();
+  a.fd = s.fd;
+  a.nfix = s.nfix;
+  a.deltat = prm.deltat;
+  a.momentum = prm.momentum;
+  a.geps = prm.geps * h0;
+  a.deps = prm.deps * h0;
+  a.near_boundary = kNearBoundaryRelative * h0;
+  a.partial = s.step_partial.span();
+  gpu::launch_move_nodes(a, s.stream);
+  gpu::launch_finish_step(s.step_partial.span(), s.step_sums.data(), s.stream);
+  MESHD_CUDA_CHECK(cudaMemcpyAsync(s.h_step.get(), s.step_sums.data(), sizeof(gpu::StepSums),
+                                   cudaMemcpyDeviceToHost, s.stream));
+  s.sync();
+  std::swap(s.p, s.p_next);
+  const gpu::StepSums& m = *s.h_step.get();
+  StepResult r;
+  r.max_move = m.max_move / h0;
+  r.max_drift = m.max_drift / h0;
+  r.rms_move = m.interior > 0 ? std::sqrt(m.sum_sq / m.interior) / h0 : 0.0;
+  return r;
+}
+
+void GpuEngine::read_points(std::vector<Vec2>& points) {
+  Impl& s = *impl_;
+  s.use_device();
+  points.resize(s.n);
+  s.p.download(points.data(), s.stream);
+  s.sync();
+}
+
+void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
+  Impl& s = *impl_;
+  s.use_device();
+  std::vector<Tri> all(s.tris.size());
+  std::vector<uint8_t> keep(s.keep.size());
+  s.tris.download(all.data(), s.stream);
+  s.keep.download(keep.data(), s.stream);
+  s.sync();
+  triangles.clear();
+  for (size_t t = 0; t < all.size(); ++t)
+    if (keep[t]) triangles.push_back({all[t].v[0], all[t].v[1], all[t].v[2]});
+}
+
+void GpuEngine::warm_up() {
+  Problem disk;
+  disk.geometry = Shape{Circle{{0.0, 0.0}, 1.0}, "", ""};
+  disk.h0 = 0.1;
+  const CompiledProblem compiled = compile_problem(disk);
+  initialize(compiled);
+  retriangulate(true);
+  for (int i = 0; i < 3; ++i) move_points();
+  retriangulate(false);
+  remove_crowded_points();
+}
+
+}  // namespace meshd

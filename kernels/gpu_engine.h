@@ -1,0 +1,68 @@
+// The GPU engine: the whole DistMesh loop on one CUDA device, behind the Engine interface.
+//
+// Points, triangles, bars and forces stay on the device for the whole job; the host sees the
+// scalars of each step and the copies it asks for. Triangulations are repaired on the device by
+// parallel Lawson flips; CGAL on the host triangulates from scratch only at the start, after
+// density control or clean-up removed points, and when a repair finds a turned-over triangle.
+// Device buffers grow and are kept between jobs (the arena): a job no larger than the largest
+// one before allocates nothing. One engine per device; not thread-safe.
+//
+// A plain C++ header: g++ code (the server, tests, meshbench) includes it without CUDA.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/distmesh/engine.h"
+
+namespace meshd {
+
+// Number of CUDA devices visible; 0 when there is no driver or no device.
+int gpu_device_count();
+// "NVIDIA H100 80GB HBM3" and the like.
+std::string gpu_device_name(int device);
+
+// Device-to-device copy bandwidth of `device` in GB/s, counting bytes read plus bytes written
+// (a 512 MiB copy, median of 10 after a warm-up): the ceiling for bandwidth-bound steps.
+double measure_copy_bandwidth(int device);
+
+// Device memory one DistMesh iteration must move at the least (every array it reads or writes
+// touched once), for nodes and bars: positions, momentum and reference positions, the bar list,
+// lengths and sizes, and the CSR that gathers the forces.
+inline double iteration_bytes(int64_t nodes, int64_t bars) {
+  return 101.0 * static_cast<double>(nodes) + 56.0 * static_cast<double>(bars);
+}
+
+class GpuEngine final : public Engine {
+ public:
+  // Creates the context and stream on `device`. Throws Error(kUnavailable) without a device.
+  explicit GpuEngine(int device = 0);
+  ~GpuEngine() override;
+  GpuEngine(const GpuEngine&) = delete;
+  GpuEngine& operator=(const GpuEngine&) = delete;
+
+  // Meshes a small disk so that modules load and the arena holds a first set of buffers.
+  void warm_up();
+
+  const char* name() const override { return "gpu"; }
+  int64_t initialize(const CompiledProblem& problem) override;
+  int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
+  TopologyStats retriangulate(bool full) override;
+  int64_t remove_crowded_points() override;
+  StepResult move_points() override;
+  void remove_points(const std::vector<int32_t>& indices) override;
+  int64_t node_count() const override;
+  void read_points(std::vector<Vec2>& points) override;
+  void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override;
+
+  int device() const;
+  // cudaMalloc calls so far in this process (all engines), to check the arena.
+  static int64_t device_allocations();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshd

@@ -1,0 +1,151 @@
+// Launch wrappers of the GPU engine's kernels: plain host declarations over DeviceSpan views.
+// Each wrapper returns at once on empty input, launches on the given stream with kBlock threads
+// per block and checks the launch. Definitions live beside their kernels in the .cu files.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cstdint>
+
+#include "core/common/vec2.h"
+#include "core/distmesh/initial_points.cuh"
+#include "core/geometry/program.h"
+#include "core/geometry/size_program.h"
+#include "kernels/device_span.cuh"
+
+namespace meshd::gpu {
+
+constexpr int kBlock = 256;
+
+inline int64_t blocks_for(int64_t n) { return (n + kBlock - 1) / kBlock; }
+
+struct BarSums {
+  double l2;  // sum of L^2
+  double h2;  // sum of h^2
+};
+// The measures of one step; also the per-block partials of their reduction.
+struct StepSums {
+  double max_move;
+  double max_drift;
+  double sum_sq;
+  double interior;
+};
+
+struct Tri {
+  int32_t v[3];
+};
+struct Bar {
+  int32_t a, b;
+};
+
+// ---- points.cu: initial points and compaction ---------------------------------------------------
+
+// Step 1-2 per grid point: size[k] = h(p) when fd(p) < geps, else 0; the minimum positive size
+// goes to *h_min_bits (an unsigned view of a positive double, so atomicMin orders it).
+void launch_classify_grid(const InitialGrid& grid, ProgramView fd, SizeView fh, double geps,
+                          DeviceSpan<double> size, unsigned long long* h_min_bits,
+                          cudaStream_t stream);
+// flag[k] = 1 for grid points kept by the size rejection and not within 0.5 h0 h of a fixed node.
+void launch_flag_grid(const InitialGrid& grid, DeviceSpan<const double> size,
+                      const unsigned long long* h_min_bits, uint64_t seed,
+                      DeviceSpan<const Vec2> fixed, DeviceSpan<uint8_t> flag, cudaStream_t stream);
+// out[offset + position[k]] = grid point k for every flagged k (position: exclusive scan of flag).
+void launch_scatter_grid(const InitialGrid& grid, DeviceSpan<const uint8_t> flag,
+                         DeviceSpan<const int32_t> position, DeviceSpan<Vec2> out, int64_t offset,
+                         cudaStream_t stream);
+// out[position[i]] = in[i] where keep[i].
+void launch_compact_points(DeviceSpan<const Vec2> in, DeviceSpan<const uint8_t> keep,
+                           DeviceSpan<const int32_t> position, DeviceSpan<Vec2> out,
+                           cudaStream_t stream);
+
+// ---- forces.cu: steps 4-8 -----------------------------------------------------------------------
+
+// Step 4: length and midpoint size of each bar; per-block partial sums of L^2 and h^2.
+void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
+                         bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
+                         DeviceSpan<BarSums> partial, cudaStream_t stream);
+// *scale = fscale * sqrt(sum L^2 / sum h^2), summing the partials in a fixed order.
+void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
+                         cudaStream_t stream);
+
+struct MoveArgs {
+  DeviceSpan<const Vec2> p;        // #N, positions now
+  DeviceSpan<Vec2> p_next;         // #N, positions after the step
+  DeviceSpan<const Vec2> p_old;    // #N, positions at the last triangulation
+  DeviceSpan<Vec2> velocity;       // #N, last step (momentum), updated
+  DeviceSpan<uint8_t> on_boundary;  // #N, written: near the boundary after the step
+  DeviceSpan<const int32_t> csr_offset;  // #N + 1
+  DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end
+  DeviceSpan<const Bar> bars;
+  DeviceSpan<const double> length;
+  DeviceSpan<const double> size;
+  const double* scale;
+  ProgramView fd;
+  int64_t nfix;
+  double deltat, momentum, geps, deps, near_boundary;
+  DeviceSpan<StepSums> partial;  // per block: max move, max drift, sum move^2, interior count
+};
+// Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
+void launch_move_nodes(const MoveArgs& args, cudaStream_t stream);
+
+void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, cudaStream_t stream);
+
+// Step 6: keep[v] = 0 for both non-fixed ends of every bar with L0 > 2 L (keep starts at 1).
+void launch_mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,
+                         DeviceSpan<const double> size, const double* scale, int64_t nfix,
+                         DeviceSpan<uint8_t> keep, cudaStream_t stream);
+
+// ---- topology.cu: triangulation repair, filter, bars ------------------------------------------------
+
+struct TopologyCounters {
+  int32_t fatal;       // inverted kept triangles that are not boundary slivers
+  int32_t dropped;     // inverted expendable triangles
+  int32_t candidates;  // edges failing the in-circle test this round
+  int32_t undecided;   // in-circle tests the filter could not decide
+  int32_t flips;       // flips done this round
+};
+
+// alive[t] = 0 for inverted or flat expendable triangles (outside, or boundary slivers: see
+// lawson_repair.h); counters->fatal counts the others, which call for a rebuild.
+void launch_check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                              DeviceSpan<const uint8_t> keep, DeviceSpan<const uint8_t> on_boundary,
+                              DeviceSpan<uint8_t> alive, TopologyCounters* counters,
+                              cudaStream_t stream);
+// Keeps the alive triangles: new index = position[t] (exclusive scan of alive).
+void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                              DeviceSpan<const uint8_t> alive, DeviceSpan<const int32_t> position,
+                              DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out,
+                              cudaStream_t stream);
+
+// One round of parallel Lawson flips, in three launches: candidates vote for their two
+// triangles (the smallest edge id wins both, so every round makes progress), winners flip, and
+// flipped triangles re-link their outer neighbours. Undecided tests are listed for the host.
+void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                            DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
+                            DeviceSpan<int32_t> undecided, TopologyCounters* counters,
+                            cudaStream_t stream);
+// Votes for edges (ids t * 3 + k) the host decided to flip.
+void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<int32_t> vote, cudaStream_t stream);
+void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
+                 DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
+                 TopologyCounters* counters, cudaStream_t stream);
+void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
+                   DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
+                   int32_t round, cudaStream_t stream);
+
+// keep[t] = fd(centroid) < -geps.
+void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,
+                            double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream);
+// count[t] = number of bars triangle t contributes (edges to a higher or no neighbour with
+// either side kept); then, with position = exclusive scan of count, writes them.
+void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
+                       DeviceSpan<int32_t> count, cudaStream_t stream);
+void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
+                       DeviceSpan<Bar> bars, cudaStream_t stream);
+// CSR of bars by node: key[2b + e] = bars[b] end e, value = 2b + e; degree counts by node.
+void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
+                     DeviceSpan<int32_t> degree, cudaStream_t stream);
+
+}  // namespace meshd::gpu

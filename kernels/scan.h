@@ -1,0 +1,22 @@
+// Device-wide exclusive scans and a stable key-value radix sort (CUB), for compaction and the
+// bar CSR. Temporary storage grows in `temp` and is kept between calls.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cstdint>
+
+#include "kernels/device_buffer.h"
+
+namespace meshd::gpu {
+
+void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
+                    cudaStream_t stream);
+void exclusive_scan(const uint8_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
+                    cudaStream_t stream);
+// Stable: equal keys keep the order of values_in, which makes the CSR deterministic.
+void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,
+                int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
+                cudaStream_t stream);
+
+}  // namespace meshd::gpu

@@ -1,0 +1,281 @@
+// Topology on the device: the orientation check that decides between repair and rebuild, parallel
+// Lawson flips (candidates vote, winners flip, flipped triangles re-link), the centroid filter and
+// the bar list.
+#include <climits>
+
+#include "core/geometry/sdf_eval.cuh"
+#include "kernels/cuda_check.h"
+#include "kernels/launch.h"
+#include "kernels/predicates.cuh"
+
+namespace meshd::gpu {
+namespace {
+
+__device__ inline int64_t thread_index() {
+  return blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
+}
+
+__device__ inline int slot_of(const Tri& nbr, int32_t value) {
+  return nbr.v[0] == value ? 0 : (nbr.v[1] == value ? 1 : 2);
+}
+
+__device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
+  bool h0 = false, h1 = false;
+  for (int k = 0; k < 3; ++k) {
+    h0 |= t.v[k] == e0;
+    h1 |= t.v[k] == e1;
+  }
+  return h0 && h1;
+}
+
+__global__ void check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                  DeviceSpan<const uint8_t> keep,
+                                  DeviceSpan<const uint8_t> on_boundary, DeviceSpan<uint8_t> alive,
+                                  TopologyCounters* counters) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  const Tri tri = tris[t];
+  // Undecided counts as turned over: rebuilding is always safe.
+  const bool ok = orientation_filtered(p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]) > 0;
+  alive[t] = 1;
+  if (ok) return;
+  const bool sliver = on_boundary[tri.v[0]] && on_boundary[tri.v[1]] && on_boundary[tri.v[2]];
+  if (keep[t] && !sliver) {
+    atomicAdd(&counters->fatal, 1);
+  } else {
+    alive[t] = 0;
+    atomicAdd(&counters->dropped, 1);
+  }
+}
+
+__global__ void compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                                  DeviceSpan<const uint8_t> alive, DeviceSpan<const int32_t> position,
+                                  DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out) {
+  const int64_t t = thread_index();
+  if (t >= tris.size || !alive[t]) return;
+  Tri n;
+  for (int k = 0; k < 3; ++k) {
+    const int32_t u = nbrs[t].v[k];
+    n.v[k] = (u < 0 || !alive[u]) ? -1 : position[u];
+  }
+  tris_out[position[t]] = tris[t];
+  nbrs_out[position[t]] = n;
+}
+
+__global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
+                                DeviceSpan<int32_t> undecided, TopologyCounters* counters) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  for (int k = 0; k < 3; ++k) {
+    const int32_t u = nbrs[t].v[k];
+    if (u <= t) continue;  // each interior edge once, from its lower triangle
+    const Tri tri = tris[t];
+    const int32_t d = tris[u].v[slot_of(nbrs[u], static_cast<int32_t>(t))];
+    const int s = in_circle_filtered(p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]);
+    const int32_t id = static_cast<int32_t>(t) * 3 + k;
+    if (s > 0) {
+      atomicMin(&vote[t], id);
+      atomicMin(&vote[u], id);
+      atomicAdd(&counters->candidates, 1);
+    } else if (s == 0) {
+      const int32_t at = atomicAdd(&counters->undecided, 1);
+      if (at < undecided.size) undecided[at] = id;
+    }
+  }
+}
+
+__global__ void vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
+                           DeviceSpan<int32_t> vote) {
+  const int64_t i = thread_index();
+  if (i >= edges.size) return;
+  const int32_t id = edges[i], t = id / 3, u = nbrs[t].v[id % 3];
+  atomicMin(&vote[t], id);
+  atomicMin(&vote[u], id);
+}
+
+// The flip of edge bc between t = [a, b, c] and u = [d, c, b] into t' = [a, b, d], u' = [a, d, c];
+// the outer neighbours keep their old ids here and are re-linked by relink.
+__global__ void flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
+                     DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
+                     TopologyCounters* counters) {
+  const int64_t t64 = thread_index();
+  if (t64 >= tris.size) return;
+  const int32_t t = static_cast<int32_t>(t64);
+  for (int k = 0; k < 3; ++k) {
+    const int32_t id = t * 3 + k;
+    if (vote[t] != id) continue;
+    const int32_t u = nbrs[t].v[k];
+    if (u <= t || vote[u] != id) continue;
+    const int j = slot_of(nbrs[u], t);
+    const Tri T = tris[t], U = tris[u], NT = nbrs[t], NU = nbrs[u];
+    const int32_t a = T.v[k], b = T.v[(k + 1) % 3], c = T.v[(k + 2) % 3], d = U.v[j];
+    const int32_t n_ab = NT.v[(k + 2) % 3], n_ca = NT.v[(k + 1) % 3];
+    const int32_t n_bd = NU.v[(j + 1) % 3], n_dc = NU.v[(j + 2) % 3];
+    tris[t] = Tri{{a, b, d}};
+    nbrs[t] = Tri{{n_bd, u, n_ab}};
+    tris[u] = Tri{{a, d, c}};
+    nbrs[u] = Tri{{n_dc, n_ca, t}};
+    flipped_round[t] = flipped_round[u] = round;
+    partner[t] = u;
+    partner[u] = t;
+    atomicAdd(&counters->flips, 1);
+    return;
+  }
+}
+
+__global__ void relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
+                       DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
+                       int32_t round) {
+  const int64_t x64 = thread_index();
+  if (x64 >= tris.size || flipped_round[x64] != round) return;
+  const int32_t x = static_cast<int32_t>(x64);
+  const Tri tri = tris[x];
+  for (int k = 0; k < 3; ++k) {
+    const int32_t y = nbrs[x].v[k];
+    if (y < 0) continue;
+    const int32_t e0 = tri.v[(k + 1) % 3], e1 = tri.v[(k + 2) % 3];
+    if (flipped_round[y] == round) {
+      // y flipped too: the edge now belongs to y or to y's partner.
+      nbrs[x].v[k] = has_edge(tris[y], e0, e1) ? y : partner[y];
+    } else {
+      // y did not flip: only x's thread writes y's slot for this edge.
+      const Tri ty = tris[y];
+      for (int s = 0; s < 3; ++s)
+        if (ty.v[s] != e0 && ty.v[s] != e1) nbrs[y].v[s] = x;
+    }
+  }
+}
+
+__global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                ProgramView fd, double geps, DeviceSpan<uint8_t> keep) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  const Tri tri = tris[t];
+  const Vec2 centroid = (1.0 / 3.0) * (p[tri.v[0]] + p[tri.v[1]] + p[tri.v[2]]);
+  keep[t] = eval_sdf(fd, centroid) < -geps;
+}
+
+__device__ inline bool is_bar(int64_t t, int32_t u, DeviceSpan<const uint8_t> keep) {
+  if (u >= 0 && u < t) return false;
+  return keep[t] || (u >= 0 && keep[u]);
+}
+
+__global__ void count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
+                           DeviceSpan<int32_t> count) {
+  const int64_t t = thread_index();
+  if (t >= nbrs.size) return;
+  int c = 0;
+  for (int k = 0; k < 3; ++k) c += is_bar(t, nbrs[t].v[k], keep);
+  count[t] = c;
+}
+
+__global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                           DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
+                           DeviceSpan<Bar> bars) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  int32_t at = position[t];
+  for (int k = 0; k < 3; ++k)
+    if (is_bar(t, nbrs[t].v[k], keep)) bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
+}
+
+__global__ void bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key,
+                         DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree) {
+  const int64_t b = thread_index();
+  if (b >= bars.size) return;
+  const Bar bar = bars[b];
+  key[2 * b] = bar.a;
+  key[2 * b + 1] = bar.b;
+  value[2 * b] = static_cast<int32_t>(2 * b);
+  value[2 * b + 1] = static_cast<int32_t>(2 * b + 1);
+  atomicAdd(&degree[bar.a], 1);
+  atomicAdd(&degree[bar.b], 1);
+}
+
+}  // namespace
+
+void launch_check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                              DeviceSpan<const uint8_t> keep, DeviceSpan<const uint8_t> on_boundary,
+                              DeviceSpan<uint8_t> alive, TopologyCounters* counters,
+                              cudaStream_t stream) {
+  if (tris.size == 0) return;
+  check_orientation<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, keep, on_boundary, alive,
+                                                                  counters);
+  MESHD_CHECK_LAUNCH("check_orientation");
+}
+
+void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                              DeviceSpan<const uint8_t> alive, DeviceSpan<const int32_t> position,
+                              DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out,
+                              cudaStream_t stream) {
+  if (tris.size == 0) return;
+  compact_triangles<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, alive, position,
+                                                                  tris_out, nbrs_out);
+  MESHD_CHECK_LAUNCH("compact_triangles");
+}
+
+void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                            DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
+                            DeviceSpan<int32_t> undecided, TopologyCounters* counters,
+                            cudaStream_t stream) {
+  if (tris.size == 0) return;
+  flip_candidates<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, nbrs, vote, undecided,
+                                                                counters);
+  MESHD_CHECK_LAUNCH("flip_candidates");
+}
+
+void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<int32_t> vote, cudaStream_t stream) {
+  if (edges.size == 0) return;
+  vote_edges<<<blocks_for(edges.size), kBlock, 0, stream>>>(edges, nbrs, vote);
+  MESHD_CHECK_LAUNCH("vote_edges");
+}
+
+void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
+                 DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
+                 TopologyCounters* counters, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  flip<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, vote, flipped_round, partner,
+                                                     round, counters);
+  MESHD_CHECK_LAUNCH("flip");
+}
+
+void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
+                   DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
+                   int32_t round, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  relink<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, flipped_round, partner, round);
+  MESHD_CHECK_LAUNCH("relink");
+}
+
+void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,
+                            double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, fd, geps, keep);
+  MESHD_CHECK_LAUNCH("centroid_filter");
+}
+
+void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
+                       DeviceSpan<int32_t> count, cudaStream_t stream) {
+  if (nbrs.size == 0) return;
+  count_bars<<<blocks_for(nbrs.size), kBlock, 0, stream>>>(nbrs, keep, count);
+  MESHD_CHECK_LAUNCH("count_bars");
+}
+
+void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
+                       DeviceSpan<Bar> bars, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  write_bars<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, keep, position, bars);
+  MESHD_CHECK_LAUNCH("write_bars");
+}
+
+void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
+                     DeviceSpan<int32_t> degree, cudaStream_t stream) {
+  if (bars.size == 0) return;
+  bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, key, value, degree);
+  MESHD_CHECK_LAUNCH("bar_ends");
+}
+
+}  // namespace meshd::gpu

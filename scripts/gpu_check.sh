@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Runs on the GPU machine from a bundle made by ../shared/tools/gpu-bundle (.gpu/): the GPU tests,
+# compute-sanitizer (memcheck, racecheck) on the agreement tests, then the GPU benchmark.
+# Logs go to $OUT (or ./gpu-logs). Usage: scripts/gpu_check.sh [tests|sanitize|bench]...
+set -uo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+run=$here/.gpu/run.sh
+out=${OUT:-$here/gpu-logs}
+mkdir -p "$out"
+steps=("$@")
+[ ${#steps[@]} -gt 0 ] || steps=(tests sanitize bench)
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$out/device.txt"
+for step in "${steps[@]}"; do
+  case $step in
+    tests)
+      $run kernels_gpu_engine_test 2>&1 | tee "$out/gpu_tests.log" | tail -25 ;;
+    sanitize)
+      san=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
+      filter='Geometries/GpuAgreement.OneStep*:Geometries/GpuAgreement.Density*:Geometries/GpuAgreement.Initial*:GpuEngine.*:*Repair*/1'
+      for tool in memcheck racecheck; do
+        LD_LIBRARY_PATH=$here/.gpu/lib "$san" --tool $tool --error-exitcode 1 \
+          "$here/.gpu/bin/kernels_gpu_engine_test" --gtest_filter="$filter" \
+          > "$out/sanitizer_$tool.log" 2>&1
+        echo "compute-sanitizer $tool: exit $? ($(grep -c 'ERROR SUMMARY: 0' "$out/sanitizer_$tool.log") clean summaries)"
+        tail -3 "$out/sanitizer_$tool.log"
+      done ;;
+    bench)
+      # G1 and G2 uniform at the issue's sizes, GPU and CPU (all cores) on the same host.
+      req="examples/g1_disk.textproto examples/g2_square_hole.textproto"
+      for n in 20000 100000 1000000 4000000; do
+        repeat=3; [ $n -gt 100000 ] && repeat=1
+        $run meshbench --backend gpu --repeat $repeat --nodes $n $req 2>&1 | tee -a "$out/bench_gpu.log"
+      done
+      for n in 20000 100000 1000000; do
+        $run meshbench --backend cpu --nodes $n $req 2>&1 | tee -a "$out/bench_cpu.log"
+      done ;;
+  esac
+done

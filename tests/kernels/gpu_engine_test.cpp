@@ -1,0 +1,239 @@
+// GPU engine against the CPU engine on the same inputs: each step on random inputs, then whole
+// meshes of G1-G5. Skips with a message where no CUDA device is visible (CI).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <map>
+#include <set>
+
+#include "core/common/error.h"
+#include "core/delaunay/exact_predicates.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/cpu_engine.h"
+#include "core/distmesh/distmesh.h"
+#include "core/distmesh/node_estimate.h"
+#include "core/geometry/sdf_eval.cuh"
+#include "core/mesh/validity.h"
+#include "kernels/gpu_engine.h"
+#include "tests/core/distmesh/benchmark_geometries.h"
+
+namespace meshd {
+namespace {
+
+#define SKIP_WITHOUT_GPU()                                                  \
+  if (gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
+
+using Triangles = std::vector<std::array<int32_t, 3>>;
+
+std::set<std::array<int32_t, 3>> canonical(const Triangles& tris) {
+  std::set<std::array<int32_t, 3>> out;
+  for (auto t : tris) {
+    std::sort(t.begin(), t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+CompiledProblem compiled(const std::string& id, double nodes) {
+  Problem p = testing::benchmark_problem(id, 0.1);
+  p.h0 = h0_for_node_count(p, nodes);
+  return compile_problem(p);
+}
+
+// Random points inside the domain, fixed points first.
+std::vector<Vec2> random_points(const CompiledProblem& c, size_t count, uint32_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x), uy(c.bbox.min.y, c.bbox.max.y);
+  std::vector<Vec2> pts = c.fixed_points;
+  while (pts.size() < count) {
+    const Vec2 q{ux(rng), uy(rng)};
+    if (eval_sdf(c.geometry.view(), q) < 0.0) pts.push_back(q);
+  }
+  return pts;
+}
+
+class GpuAgreement : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GpuAgreement, InitialPointsMatchTheCpu) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 5000);
+  ThreadPool pool;
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  const int64_t n_cpu = cpu.initialize(c), n_gpu = gpu.initialize(c);
+  // Both use the same evaluator and hash; nvcc's fused multiply-adds may move a point across the
+  // geps or rejection threshold, so a handful may differ.
+  EXPECT_NEAR(n_gpu, n_cpu, std::max<int64_t>(2, n_cpu / 1000));
+  std::vector<Vec2> a, b;
+  cpu.read_points(a);
+  gpu.read_points(b);
+  for (size_t f = 0; f < c.fixed_points.size(); ++f) EXPECT_EQ(b[f], c.fixed_points[f]);
+}
+
+TEST_P(GpuAgreement, OneStepOnRandomPointsMatchesTheCpu) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 3000);
+  ThreadPool pool;
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const auto pts = random_points(c, 3000, seed);
+    CpuEngine cpu(pool);
+    GpuEngine gpu(0);
+    cpu.load_points(c, pts);
+    gpu.load_points(c, pts);
+    const TopologyStats tc = cpu.retriangulate(true), tg = gpu.retriangulate(true);
+    EXPECT_EQ(tc.triangles, tg.triangles);
+    EXPECT_EQ(tc.bars, tg.bars);
+    Triangles t_cpu, t_gpu;
+    cpu.read_triangles(t_cpu);
+    gpu.read_triangles(t_gpu);
+    EXPECT_EQ(canonical(t_cpu), canonical(t_gpu));
+    const StepResult sc = cpu.move_points(), sg = gpu.move_points();
+    EXPECT_NEAR(sc.max_move, sg.max_move, 1e-9);
+    EXPECT_NEAR(sc.rms_move, sg.rms_move, 1e-9);
+    EXPECT_NEAR(sc.max_drift, sg.max_drift, 1e-9);
+    std::vector<Vec2> a, b;
+    cpu.read_points(a);
+    gpu.read_points(b);
+    ASSERT_EQ(a.size(), b.size());
+    // Interior nodes agree to rounding. Projected nodes (now on the boundary) agree to what the
+    // finite-difference gradient allows: one-ulp differences in their position (the L0 scale is
+    // a sum in another order) change fd by ~1e-16, which the step deps = 1.5e-8 h0 amplifies.
+    double worst_interior = 0.0, worst_boundary = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const bool projected = std::fabs(eval_sdf(c.geometry.view(), a[i])) < 1e-3 * c.h0;
+      double& worst = projected ? worst_boundary : worst_interior;
+      worst = std::max(worst, norm(a[i] - b[i]));
+    }
+    EXPECT_LT(worst_interior, 1e-12 * c.h0) << "seed " << seed;
+    EXPECT_LT(worst_boundary, 1e-6 * c.h0) << "seed " << seed;
+  }
+}
+
+// The repaired triangulation must be Delaunay: every kept triangle counter-clockwise and every
+// edge between two kept triangles locally Delaunay (exact predicates), with as many triangles as
+// CGAL's rebuild of the same points, up to the collapsed boundary slivers a repair drops.
+TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 3000);
+  ThreadPool pool;
+  GpuEngine gpu(0);
+  gpu.initialize(c);
+  gpu.retriangulate(true);
+  int64_t total_flips = 0, repairs = 0;
+  for (int step = 0; step < 60; ++step) {
+    for (int i = 0; i < 3; ++i) gpu.move_points();
+    const TopologyStats tg = gpu.retriangulate(false);
+    if (tg.full) continue;
+    ++repairs;
+    total_flips += tg.flips;
+    std::vector<Vec2> pts;
+    Triangles t_gpu, t_cpu;
+    gpu.read_points(pts);
+    gpu.read_triangles(t_gpu);
+    CpuEngine cpu(pool);
+    cpu.load_points(c, pts);
+    cpu.retriangulate(true);
+    cpu.read_triangles(t_cpu);
+    EXPECT_NEAR(static_cast<double>(t_gpu.size()), static_cast<double>(t_cpu.size()),
+                0.01 * t_cpu.size()) << "step " << step;
+    std::map<std::array<int32_t, 2>, std::pair<int32_t, int32_t>> opposite;  // edge -> (tri, vertex)
+    for (size_t t = 0; t < t_gpu.size(); ++t) {
+      const auto& tri = t_gpu[t];
+      ASSERT_GT(orientation_sign(pts[tri[0]], pts[tri[1]], pts[tri[2]]), 0) << "step " << step;
+      for (int k = 0; k < 3; ++k) {
+        const int32_t a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
+        const auto it = opposite.find({b, a});
+        if (it == opposite.end()) {
+          opposite[{a, b}] = {static_cast<int32_t>(t), tri[k]};
+          continue;
+        }
+        EXPECT_LE(in_circle_sign(pts[tri[0]], pts[tri[1]], pts[tri[2]], pts[it->second.second]), 0)
+            << "edge " << a << "-" << b << " is not locally Delaunay at step " << step;
+      }
+    }
+  }
+  EXPECT_GT(repairs, 10);
+  EXPECT_GT(total_flips, 0) << "the test never exercised a flip";
+}
+
+TEST_P(GpuAgreement, DensityControlRemovesTheSamePoints) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 2000);
+  ThreadPool pool;
+  // Crowd the domain: twice the points it wants.
+  const auto pts = random_points(c, 4000, 7);
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  cpu.load_points(c, pts);
+  gpu.load_points(c, pts);
+  cpu.retriangulate(true);
+  gpu.retriangulate(true);
+  const int64_t rc = cpu.remove_crowded_points(), rg = gpu.remove_crowded_points();
+  EXPECT_GT(rc, 0);
+  EXPECT_EQ(rc, rg);
+  std::vector<Vec2> a, b;
+  cpu.read_points(a);
+  gpu.read_points(b);
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin()));
+}
+
+TEST_P(GpuAgreement, WholeMeshMatchesTheCpuEngine) {
+  SKIP_WITHOUT_GPU();
+  const std::string id = GetParam();
+  for (double nodes : {2000.0, 20000.0}) {
+    const CompiledProblem c = compiled(id, nodes);
+    ThreadPool pool;
+    CpuEngine cpu(pool);
+    GpuEngine gpu(0);
+    const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
+    const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
+    SCOPED_TRACE(id + " at " + std::to_string(nodes) + " nodes");
+    const auto validity = check_validity(rg.mesh);
+    EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
+    EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
+                static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
+    EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
+    EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
+    EXPECT_GE(rg.quality.q_min, 0.65);
+    EXPECT_NEAR(mesh_area(rg.mesh), testing::benchmark_area(id), 0.005 * testing::benchmark_area(id));
+    EXPECT_TRUE(rg.stats.converged);
+    for (const Vec2 f : c.fixed_points) {
+      EXPECT_NE(std::find(rg.mesh.points.begin(), rg.mesh.points.end(), f), rg.mesh.points.end());
+    }
+    EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement,
+                         ::testing::Values("G1", "G2", "G3", "G4", "G5"));
+
+TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled("G5", 5000);
+  GpuEngine gpu(0);
+  gpu.warm_up();
+  const MeshResult first = generate_mesh(c, gpu, nullptr, nullptr);
+  const int64_t allocations = GpuEngine::device_allocations();
+  const MeshResult second = generate_mesh(c, gpu, nullptr, nullptr);
+  EXPECT_EQ(GpuEngine::device_allocations(), allocations) << "the arena should be warm";
+  EXPECT_EQ(first.mesh.points.size(), second.mesh.points.size());
+  EXPECT_TRUE(std::equal(first.mesh.points.begin(), first.mesh.points.end(),
+                         second.mesh.points.begin()));
+  EXPECT_EQ(first.mesh.triangles, second.mesh.triangles);
+}
+
+TEST(GpuEngine, MissingDeviceIsUnavailable) {
+  SKIP_WITHOUT_GPU();
+  try {
+    GpuEngine engine(gpu_device_count());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kUnavailable);
+  }
+}
+
+}  // namespace
+}  // namespace meshd
