@@ -120,6 +120,9 @@ class Loop {
   static constexpr int kCleanupRounds = 3;
   static constexpr int kCleanupIterations = 200;
   static constexpr double kMaxMoveFactor = 10.0;
+  // A relaxation runs at least this long: right after a triangulation a lattice-like start can
+  // be balanced everywhere inside while its boundary layer has not moved yet.
+  static constexpr int kMinIterations = 10;
 
   void triangulate(bool full) {
     const auto t = Clock::now();
@@ -164,7 +167,9 @@ class Loop {
       // 8. Termination (params.h): the interior has settled as a whole and no node still moves
       // far; waiting for the last annealing node to stop costs hundreds of iterations and no
       // quality.
-      if (step.rms_move < prm.dptol && step.max_move < kMaxMoveFactor * prm.dptol) return true;
+      if (it >= kMinIterations && step.rms_move < prm.dptol &&
+          step.max_move < kMaxMoveFactor * prm.dptol)
+        return true;
     }
     return false;
   }

@@ -172,11 +172,22 @@ void expect_repairs_match_full_triangulations(const Problem& problem) {
       if (eval_sdf(c.geometry.view(), centroid) < -c.params.geps * c.h0) want.push_back(t);
     }
     const auto got_set = canonical(s.triangles), want_set = canonical(want);
+    // A repair may drop boundary slivers that turned over (lawson_repair.h): those, and only
+    // those, may be missing; nothing may be there that a rebuild would not give.
+    // The engine judged "near" before its last projection; nodes may sit a little deeper now.
+    auto near_boundary = [&](int32_t v) {
+      return eval_sdf(c.geometry.view(), s.points[v]) >= -2 * kNearBoundaryRelative * c.h0;
+    };
     size_t missing = 0;
-    for (const Tri& t : want_set) missing += got_set.count(t) == 0;
+    for (const Tri& t : want_set) {
+      if (got_set.count(t) != 0) continue;
+      if (!(near_boundary(t[0]) && near_boundary(t[1]) && near_boundary(t[2]))) ++missing;
+    }
+    size_t extra = 0;
+    for (const Tri& t : got_set) extra += want_set.count(t) == 0;
     EXPECT_EQ(missing, 0u) << "iteration " << it << ": " << missing << " of " << want_set.size()
                            << " Delaunay triangles missing after " << stats.flips << " flips";
-    EXPECT_EQ(got_set.size(), want_set.size()) << "iteration " << it;
+    EXPECT_EQ(extra, 0u) << "iteration " << it;
     EXPECT_EQ(stats.triangles, static_cast<int64_t>(s.triangles.size()));
     EXPECT_EQ(stats.bars, static_cast<int64_t>(unique_edges(s.triangles).size()));
   }
