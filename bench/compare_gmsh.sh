@@ -134,9 +134,11 @@ for target in "${targets[@]}"; do
 
   bench=$("$MESHBENCH" "${threads_arg[@]}" --nodes "$nodes" --repeat 3 "$REQUEST")
   echo "$bench" | tail -1 >&2
-  # | request | nodes | triangles | ... | t_total s (13) | q_min | q_mean | min angle |
-  IFS='|' read -r _ _ m_nodes _ _ _ _ _ _ _ _ _ m_time m_qmin m_qmean _ <<<"$(echo "$bench" | tail -1)"
-  m_nodes=${m_nodes// /} m_time=${m_time// /} m_qmin=${m_qmin// /} m_qmean=${m_qmean// /}
+  # Columns by their header names, so that new meshbench columns do not shift them.
+  read -r m_nodes m_time m_qmin m_qmean < <(echo "$bench" | grep '^|' | awk -F'|' '
+    NR == 1 { for (i = 2; i < NF; i++) { name = $i; gsub(/^ +| +$/, "", name); col[name] = i } }
+    END { v = $0; split(v, f, "|"); for (k in f) gsub(/^ +| +$/, "", f[k]);
+          print f[col["nodes"]], f[col["t_total s"]], f[col["q_min"]], f[col["q_mean"]] }')
   ratio=$(echo "$best / $m_time" | bc -l)
   pydm="—"
   [[ $target == 10000 ]] && pydm="$PYDISTMESH_10K_S (quoted)"

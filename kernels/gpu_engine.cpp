@@ -239,8 +239,9 @@ struct GpuEngine::Impl {
     return *h_counters.get();
   }
 
-  // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed.
-  int64_t repair() {
+  // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
+  // dropped slivers in `dropped`.
+  int64_t repair(int64_t& dropped) {
     const int64_t m = static_cast<int64_t>(tris.size());
     // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped.
     flags.resize(m);
@@ -249,6 +250,7 @@ struct GpuEngine::Impl {
                                   flags.span(), counters.data(), stream);
     const gpu::TopologyCounters c = read_counters();
     if (c.fatal > 0) return -1;
+    dropped = c.dropped;
     if (c.dropped > 0) {
       position.resize(m);
       gpu::exclusive_scan(flags.data(), position.data(), m, temp, stream);
@@ -449,7 +451,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   TopologyStats stats;
   stats.full = full || !s.have_triangulation;
   if (!stats.full) {
-    const int64_t flips = s.repair();
+    const int64_t flips = s.repair(stats.dropped);
     if (flips < 0) {
       stats.full = true;
       stats.repair_failed = true;

@@ -32,18 +32,18 @@ void drop_triangles(Triangulation& tri, const std::vector<char>& drop) {
 
 }  // namespace
 
-int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
-                      const std::vector<char>& on_boundary, Triangulation& tri) {
+RepairResult lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
+                           const std::vector<char>& on_boundary, Triangulation& tri) {
+  RepairResult result;
   std::vector<char> drop(tri.triangles.size(), 0);
-  bool any_dropped = false;
   for (size_t i = 0; i < tri.triangles.size(); ++i) {
     const auto& t = tri.triangles[i];
     if (orientation_sign(points[t[0]], points[t[1]], points[t[2]]) > 0) continue;
-    if (keep[i] && !(on_boundary[t[0]] && on_boundary[t[1]] && on_boundary[t[2]])) return -1;
+    if (keep[i] && !(on_boundary[t[0]] && on_boundary[t[1]] && on_boundary[t[2]])) return result;
     drop[i] = 1;
-    any_dropped = true;
+    ++result.dropped;
   }
-  if (any_dropped) drop_triangles(tri, drop);
+  if (result.dropped > 0) drop_triangles(tri, drop);
   auto& T = tri.triangles;
   auto& N = tri.neighbors;
 
@@ -55,7 +55,8 @@ int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& 
     for (int k = 0; k < 3; ++k)
       if (N[t][k] > static_cast<int32_t>(t)) stack.emplace_back(static_cast<int32_t>(t), k);
 
-  int64_t flips = 0;
+  result.ok = true;
+  int64_t& flips = result.flips;
   while (!stack.empty()) {
     const auto [t, k] = stack.back();
     stack.pop_back();
@@ -80,7 +81,7 @@ int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& 
     stack.emplace_back(u, 0);
     stack.emplace_back(u, 1);
   }
-  return flips;
+  return result;
 }
 
 }  // namespace meshd

@@ -19,9 +19,14 @@ namespace meshd {
 // expendable: outside the domain (keep[t] == 0, #M), or slivers with all three nodes on the
 // boundary (on_boundary, #N), which collapse when their middle node is projected back onto a
 // convex curve. DistMesh discards both anyway, and the rest stays a valid triangulation of a
-// slightly smaller region. Returns the number of flips, or -1 without changing anything when
-// any other triangle is inverted or flat: then the caller must triangulate from scratch.
-int64_t lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
-                      const std::vector<char>& on_boundary, Triangulation& tri);
+// slightly smaller region. Fails, without changing anything, when any other triangle is
+// inverted or flat: then the caller must triangulate from scratch.
+struct RepairResult {
+  bool ok = false;
+  int64_t flips = 0;
+  int64_t dropped = 0;  // expendable triangles removed
+};
+RepairResult lawson_repair(const std::vector<Vec2>& points, const std::vector<char>& keep,
+                           const std::vector<char>& on_boundary, Triangulation& tri);
 
 }  // namespace meshd

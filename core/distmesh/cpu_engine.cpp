@@ -69,10 +69,11 @@ TopologyStats CpuEngine::retriangulate(bool full) {
   TopologyStats stats;
   stats.full = full || dt_.triangles.empty();
   if (!stats.full) {
-    stats.flips = lawson_repair(p_, dt_keep_, on_boundary_, dt_);
-    if (stats.flips < 0) {
+    const RepairResult repair = lawson_repair(p_, dt_keep_, on_boundary_, dt_);
+    stats.flips = repair.flips;
+    stats.dropped = repair.dropped;
+    if (!repair.ok) {
       // A triangle turned over since the last triangulation: flips cannot repair that.
-      stats.flips = 0;
       stats.full = true;
       stats.repair_failed = true;
     }

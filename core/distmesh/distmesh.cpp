@@ -98,10 +98,11 @@ class Loop {
       s.t_cleanup += seconds_since(t);
     }
 
-    // The points moved a little since the last triangulation: triangulate once more, from
-    // scratch, so that the result is the Delaunay mesh of its own nodes (a repaired
-    // triangulation may have dropped collapsed boundary slivers).
-    triangulate(true);
+    // The points moved a little since the last triangulation: triangulate once more so that the
+    // result is the Delaunay mesh of its own nodes; from scratch when a repair dropped collapsed
+    // boundary slivers since the last full triangulation, which may have left a gap.
+    triangulate(false);
+    if (dropped_since_full_ > 0) triangulate(true);
     engine_.read_points(points_);
     engine_.read_triangles(triangles_);
     if (problem_.params.cleanup) {
@@ -129,7 +130,11 @@ class Loop {
     const TopologyStats topo = engine_.retriangulate(full);
     stats_.t_triangulation += seconds_since(t);
     ++stats_.retriangulations;
-    if (topo.full) ++stats_.full_triangulations;
+    if (topo.full) {
+      ++stats_.full_triangulations;
+      dropped_since_full_ = 0;
+    }
+    dropped_since_full_ += topo.dropped;
     if (topo.repair_failed) ++stats_.repair_fallbacks;
     stats_.flips += topo.flips;
     drift_ = 0.0;
@@ -200,6 +205,7 @@ class Loop {
   const Clock::time_point start_ = Clock::now();
   RunStats stats_;
   double drift_ = 0.0;
+  int64_t dropped_since_full_ = 0;
   int64_t topology_version_ = 0;
   int64_t snapshot_version_ = -1;
   std::vector<Vec2> points_;

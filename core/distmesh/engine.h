@@ -30,6 +30,7 @@ struct TopologyStats {
   int64_t flips = 0;      // edge flips of a repair
   bool full = true;       // a full triangulation rather than a repair
   bool repair_failed = false;  // a repair was asked for but found an inverted triangle
+  int64_t dropped = 0;         // turned-over boundary slivers a repair removed
 };
 
 class Engine {
