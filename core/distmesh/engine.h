@@ -16,7 +16,7 @@ namespace meshd {
 // Nodes within this distance of the boundary (times h0) count as boundary nodes for the
 // triangulation repair: a kept triangle of three of them that turns over is a boundary sliver
 // collapsing onto a convex curve, which the repair drops instead of rebuilding (lawson_repair.h).
-constexpr double kNearBoundaryRelative = 0.05;
+constexpr double kNearBoundaryRelative = 0.6;
 
 struct StepResult {
   double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
