@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh/quality.h"
+#include "core/mesh/xml_escaped.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
 
@@ -57,29 +58,6 @@ std::string bin_colour(int bin) { return hex(quality_colour((bin + 0.5) / kColou
 constexpr const char* kGroupColours[] = {"#000000", "#e7298a", "#7570b3", "#d95f02",
                                          "#1b9e77", "#666666", "#a6761d", "#e6ab02"};
 constexpr int kNumGroupColours = sizeof(kGroupColours) / sizeof(kGroupColours[0]);
-
-std::string xml_escaped(const std::string& s) {
-  std::string r;
-  for (const char c : s) {
-    switch (c) {
-      case '&':
-        r += "&amp;";
-        break;
-      case '<':
-        r += "&lt;";
-        break;
-      case '>':
-        r += "&gt;";
-        break;
-      case '"':
-        r += "&quot;";
-        break;
-      default:
-        r += c;
-    }
-  }
-  return r;
-}
 
 // Maps mesh coordinates to the integer grid, y up.
 struct Transform {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/mesh/quality.h"
+#include "core/mesh/xml_escaped.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
 
@@ -74,33 +75,6 @@ const char* vtk_type_name<int32_t>() {
 template <>
 const char* vtk_type_name<uint8_t>() {
   return "UInt8";
-}
-
-// The five characters XML reserves, escaped for an attribute value.
-std::string xml_escaped(const std::string& s) {
-  std::string r;
-  for (const char c : s) {
-    switch (c) {
-      case '&':
-        r += "&amp;";
-        break;
-      case '<':
-        r += "&lt;";
-        break;
-      case '>':
-        r += "&gt;";
-        break;
-      case '"':
-        r += "&quot;";
-        break;
-      case '\'':
-        r += "&apos;";
-        break;
-      default:
-        r += c;
-    }
-  }
-  return r;
 }
 
 // Writes one <DataArray> with its values base64-encoded behind a UInt64 byte count.
