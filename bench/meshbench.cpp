@@ -113,9 +113,9 @@ int main(int argc, char** argv) {
   }
 #endif
   std::printf("| request | backend | nodes | triangles | levels | iterations | equiv. iter "
-              "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter "
+              "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter | GB/s (model) "
               "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   for (const std::string& path : opt.requests) {
     const std::string name = std::filesystem::path(path).stem().string();
@@ -131,13 +131,22 @@ int main(int argc, char** argv) {
       const auto& s = best.stats;
       const auto validity = meshd::check_validity(best.mesh);
       const int steps = s.iterations + s.cleanup_iterations;
+      const double us_per_step = steps > 0 ? 1e6 * s.t_forces / steps : 0.0;
+      // Bars of a valid mesh: each interior edge is shared by two triangles.
+      const int64_t bars = static_cast<int64_t>(
+          (3 * best.mesh.triangles.size() + best.mesh.boundary_edges.size()) / 2);
+      const double gbps = us_per_step > 0.0
+                              ? meshd::iteration_bytes(static_cast<int64_t>(best.mesh.points.size()),
+                                                       bars, !compiled.size.uniform()) /
+                                    (us_per_step * 1e3)
+                              : 0.0;
       std::printf("| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d | %lld | %.3f | %.3f "
-                  "| %.1f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
+                  "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
                   name.c_str(), engine->name(), best.mesh.points.size(),
                   best.mesh.triangles.size(), s.levels, steps, s.equivalent_iterations,
                   s.retriangulations, s.retriangulations - s.full_triangulations,
                   s.full_triangulations, s.repair_fallbacks, static_cast<long long>(s.flips),
-                  s.t_triangulation, s.t_forces, steps > 0 ? 1e6 * s.t_forces / steps : 0.0,
+                  s.t_triangulation, s.t_forces, us_per_step, gbps,
                   s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
                   best.quality.min_angle_deg,
                   validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());

@@ -26,6 +26,8 @@ struct StepOp {
 __global__ void measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                              bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                              DeviceSpan<BarSums> partial) {
+  // length and size are written only where given (size > 0): the step needs the sizes of a
+  // graded field, density control needs both.
   using Reduce = cub::BlockReduce<BarSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
   const int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
@@ -34,8 +36,8 @@ __global__ void measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bar
     const Vec2 a = p[bars[b].a], e = p[bars[b].b];
     const double len = norm(a - e);
     const double h = uniform ? 1.0 : eval_size(fh, 0.5 * (a + e));
-    length[b] = len;
-    size[b] = h;
+    if (length.size > 0) length[b] = len;
+    if (size.size > 0) size[b] = h;
     sums = {len * len, h * h};
   }
   const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
@@ -67,11 +69,16 @@ __global__ void move_nodes(MoveArgs a) {
       for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1]; ++k) {
         const int32_t e = a.csr_entry[k];
         const int32_t b = e >> 1;
-        const double len = a.length[b];
-        const double f = fmax(a.size[b] * scale - len, 0.0);
-        const Vec2 v = a.p[a.bars[b].a] - a.p[a.bars[b].b];
+        // Only the other end's position is gathered; the bar vector p[a] - p[b] and its length
+        // come out bitwise as measure_bars computed them.
+        const bool second = (e & 1) != 0;
+        const Vec2 other = a.p[second ? a.bars[b].a : a.bars[b].b];
+        const Vec2 v = second ? other - here : here - other;
+        const double len = norm(v);
+        const double h = a.uniform ? 1.0 : a.size[b];
+        const double f = fmax(h * scale - len, 0.0);
         const Vec2 fv = len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0};
-        total = (e & 1) ? total - fv : total + fv;
+        total = second ? total - fv : total + fv;
       }
       const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];
       a.velocity[i] = step;

@@ -202,10 +202,13 @@ struct GpuEngine::Impl {
     return *h_ints.get() + last_flag;
   }
 
-  void measure_bars() {
+  // Step 4. The step itself needs only the sizes of a graded field; density control needs the
+  // lengths and sizes of every bar.
+  void measure_bars(bool for_density_control) {
     const int64_t nb = static_cast<int64_t>(bars.size());
-    length.resize(nb);
-    size.resize(nb);
+    const bool store_size = for_density_control || !uniform;
+    length.resize(for_density_control ? nb : 0);
+    size.resize(store_size ? nb : 0);
     bar_partial.resize(gpu::blocks_for(nb));
     scale.resize(1);
     gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
@@ -470,7 +473,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
 int64_t GpuEngine::remove_crowded_points() {
   Impl& s = *impl_;
   s.use_device();
-  s.measure_bars();
+  s.measure_bars(true);
   s.flags.resize(s.n);
   MESHD_CUDA_CHECK(cudaMemsetAsync(s.flags.data(), 1, s.n, s.stream));
   gpu::launch_mark_crowded(s.bars.span(), s.length.span(), s.size.span(), s.scale.data(), s.nfix,
@@ -496,7 +499,7 @@ StepResult GpuEngine::move_points() {
   s.use_device();
   const Params& prm = s.problem->params;
   const double h0 = s.problem->h0;
-  s.measure_bars();
+  s.measure_bars(false);
   s.step_partial.resize(gpu::blocks_for(s.n));
   s.step_sums.resize(1);
   gpu::MoveArgs a{};
@@ -508,8 +511,8 @@ StepResult GpuEngine::move_points() {
   a.csr_offset = s.csr_offset.span();
   a.csr_entry = s.csr_entry.span();
   a.bars = s.bars.span();
-  a.length = s.length.span();
   a.size = s.size.span();
+  a.uniform = s.uniform;
   a.scale = s.scale.data();
   a.fd = s.fd;
   a.nfix = s.nfix;

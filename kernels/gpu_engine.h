@@ -27,13 +27,6 @@ std::string gpu_device_name(int device);
 // (a 512 MiB copy, median of 10 after a warm-up): the ceiling for bandwidth-bound steps.
 double measure_copy_bandwidth(int device);
 
-// Device memory one DistMesh iteration must move at the least (every array it reads or writes
-// touched once), for nodes and bars: positions, momentum and reference positions, the bar list,
-// lengths and sizes, and the CSR that gathers the forces.
-inline double iteration_bytes(int64_t nodes, int64_t bars) {
-  return 101.0 * static_cast<double>(nodes) + 56.0 * static_cast<double>(bars);
-}
-
 class GpuEngine final : public Engine {
  public:
   // Creates the context and stream on `device`. Throws Error(kUnavailable) without a device.

@@ -60,7 +60,8 @@ void launch_compact_points(DeviceSpan<const Vec2> in, DeviceSpan<const uint8_t> 
 
 // ---- forces.cu: steps 4-8 -----------------------------------------------------------------------
 
-// Step 4: length and midpoint size of each bar; per-block partial sums of L^2 and h^2.
+// Step 4: length and midpoint size of each bar (stored where the spans are not empty);
+// per-block partial sums of L^2 and h^2.
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                          DeviceSpan<BarSums> partial, cudaStream_t stream);
@@ -77,8 +78,8 @@ struct MoveArgs {
   DeviceSpan<const int32_t> csr_offset;  // #N + 1
   DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end
   DeviceSpan<const Bar> bars;
-  DeviceSpan<const double> length;
-  DeviceSpan<const double> size;
+  DeviceSpan<const double> size;  // #B, h at the midpoints; unused when uniform
+  bool uniform;
   const double* scale;
   ProgramView fd;
   int64_t nfix;

@@ -18,6 +18,15 @@ namespace meshd {
 // collapsing onto a convex curve, which the repair drops instead of rebuilding (lawson_repair.h).
 constexpr double kNearBoundaryRelative = 0.6;
 
+// Memory one DistMesh iteration must move at the least, every array it reads or writes
+// touched once: per node the position (read, and written to the other buffer), momentum (read
+// and written), the position at the last triangulation, the boundary flag and the CSR offset
+// (85 bytes); per bar its two ends and its two CSR entries (16 bytes), and for a graded size
+// field its midpoint size, written and read (16 more).
+inline double iteration_bytes(int64_t nodes, int64_t bars, bool graded) {
+  return 85.0 * static_cast<double>(nodes) + (graded ? 32.0 : 16.0) * static_cast<double>(bars);
+}
+
 struct StepResult {
   double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
   double max_drift = 0.0;
