@@ -116,7 +116,8 @@ struct GpuEngine::Impl {
   bool have_triangulation = false;
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
-  DeviceBuffer<int32_t> vote, flipped_round, partner, undecided, position, count;
+  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count;
+  DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   int32_t round = 0;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size;
@@ -319,13 +320,11 @@ struct GpuEngine::Impl {
                          d) > 0)
         flip_ids.push_back(id);
     }
-    DeviceBuffer<int32_t>& edges = count_buffer();
-    edges.upload(flip_ids.data(), flip_ids.size(), stream);
-    gpu::launch_vote_edges(edges.span(), nbrs.span(), vote.span(), stream);
+    decided.upload(flip_ids.data(), flip_ids.size(), stream);
+    gpu::launch_vote_edges(decided.span(), nbrs.span(), vote.span(), stream);
     sync();  // flip_ids is a host vector
     return static_cast<int32_t>(flip_ids.size());
   }
-  DeviceBuffer<int32_t>& count_buffer() { return count; }
 
   TopologyStats filter_and_bars() {
     const int64_t m = static_cast<int64_t>(tris.size());
