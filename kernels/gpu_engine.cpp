@@ -26,6 +26,8 @@ namespace {
 constexpr int32_t kMaxUndecided = 4096;
 // A repair that needs more rounds than this is pathological: rebuild instead.
 constexpr int kMaxFlipRounds = 200;
+// Flip rounds launched between two reads of the counters.
+constexpr int kRoundsPerBatch = 8;
 
 // Pinned host memory for the few scalars read every step.
 template <typename T>
@@ -277,24 +279,52 @@ struct GpuEngine::Impl {
     vote.resize(mt);
     partner.resize(mt);
     undecided.resize(kMaxUndecided);
-    int64_t flips = 0;
-    for (int r = 0; r < kMaxFlipRounds; ++r) {
-      ++round;
-      MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
-      reset_counters();
-      gpu::launch_flip_candidates(p.span(), tris.span(), nbrs.span(), vote.span(),
-                                  undecided.span(), counters.data(), stream);
-      gpu::TopologyCounters rc = read_counters();
+    reset_counters();
+    for (int rounds = 0; rounds < kMaxFlipRounds; rounds += kRoundsPerBatch) {
+      // A batch of rounds back to back, read once: repairs cascade through a dozen rounds of a
+      // few flips each, and a host round trip per round would cost more than the flips.
+      for (int r = 0; r < kRoundsPerBatch; ++r) flip_round();
+      const gpu::TopologyCounters rc = read_counters();
       if (rc.undecided > kMaxUndecided) return -1;
-      if (rc.undecided > 0) rc.candidates += decide_on_host(rc.undecided);
-      if (rc.candidates == 0) return flips;
-      gpu::launch_flip(tris.span(), nbrs.span(), vote.span(), flipped_round.span(), partner.span(),
-                       round, counters.data(), stream);
-      gpu::launch_relink(tris.span(), nbrs.span(), flipped_round.span(), partner.span(), round,
-                         stream);
-      flips += read_counters().flips;
+      if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
+      if (rc.undecided > 0) {
+        // The batch's lists are stale after its last flips: one round again, with the host
+        // deciding what the filter could not.
+        const gpu::TopologyCounters again = candidates_round();
+        if (again.undecided > kMaxUndecided) return -1;
+        const int32_t to_flip = again.undecided > 0 ? decide_on_host(again.undecided) : 0;
+        // Exactly co-circular quadruples stay undecided for the filter: once the host says
+        // that none of them flips and nothing else does, the triangulation is Delaunay.
+        if (again.candidates == 0 && to_flip == 0) return again.flips;
+        flip_and_relink();
+      }
     }
     return -1;
+  }
+
+  // One round of flips without a host round trip.
+  void flip_round() {
+    launch_candidates();
+    flip_and_relink();
+  }
+  void launch_candidates() {
+    ++round;
+    const int64_t mt = static_cast<int64_t>(tris.size());
+    MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
+    // candidates and undecided count per round; flips add up over the repair.
+    MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->candidates, 0, 2 * sizeof(int32_t), stream));
+    gpu::launch_flip_candidates(p.span(), tris.span(), nbrs.span(), vote.span(), undecided.span(),
+                                counters.data(), stream);
+  }
+  gpu::TopologyCounters candidates_round() {
+    launch_candidates();
+    return read_counters();
+  }
+  void flip_and_relink() {
+    gpu::launch_flip(tris.span(), nbrs.span(), vote.span(), flipped_round.span(), partner.span(),
+                     round, counters.data(), stream);
+    gpu::launch_relink(tris.span(), nbrs.span(), flipped_round.span(), partner.span(), round,
+                       stream);
   }
 
   // The exact fallback: in-circle tests the filter left undecided, on the host with CGAL's exact

@@ -102,8 +102,8 @@ struct TopologyCounters {
   int32_t fatal;       // inverted kept triangles that are not boundary slivers
   int32_t dropped;     // inverted expendable triangles
   int32_t candidates;  // edges failing the in-circle test this round
-  int32_t undecided;   // in-circle tests the filter could not decide
-  int32_t flips;       // flips done this round
+  int32_t undecided;   // in-circle tests the filter could not decide this round
+  int32_t flips;       // flips done so far
 };
 
 // alive[t] = 0 for inverted or flat expendable triangles (outside, or boundary slivers: see
