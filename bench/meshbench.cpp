@@ -56,14 +56,22 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= argc) usage(2);
       return argv[++i];
     };
-    if (a == "-h" || a == "--help") usage(0);
-    else if (a == "--backend") o.backend = value();
-    else if (a == "--threads") o.threads = static_cast<unsigned>(std::stoul(value()));
-    else if (a == "--nodes") o.nodes = std::stod(value());
-    else if (a == "--repeat") o.repeat = std::max(1, std::stoi(value()));
-    else if (a == "-o") o.outputs.push_back(value());
-    else if (!a.empty() && a[0] == '-') usage(2);
-    else o.requests.push_back(a);
+    if (a == "-h" || a == "--help")
+      usage(0);
+    else if (a == "--backend")
+      o.backend = value();
+    else if (a == "--threads")
+      o.threads = static_cast<unsigned>(std::stoul(value()));
+    else if (a == "--nodes")
+      o.nodes = std::stod(value());
+    else if (a == "--repeat")
+      o.repeat = std::max(1, std::stoi(value()));
+    else if (a == "-o")
+      o.outputs.push_back(value());
+    else if (!a.empty() && a[0] == '-')
+      usage(2);
+    else
+      o.requests.push_back(a);
   }
   if (o.requests.empty()) usage(2);
   if (o.backend != "cpu" && o.backend != "gpu") usage(2);
@@ -89,8 +97,7 @@ std::unique_ptr<meshd::Engine> make_engine(const Options& o, meshd::ThreadPool& 
 }
 
 std::string expand(std::string pattern, const std::string& name) {
-  for (size_t at; (at = pattern.find("{name}")) != std::string::npos;)
-    pattern.replace(at, 6, name);
+  for (size_t at; (at = pattern.find("{name}")) != std::string::npos;) pattern.replace(at, 6, name);
   return pattern;
 }
 
@@ -112,9 +119,10 @@ int main(int argc, char** argv) {
                 meshd::gpu_device_name(0).c_str(), meshd::measure_copy_bandwidth(0));
   }
 #endif
-  std::printf("| request | backend | nodes | triangles | levels | iterations | equiv. iter "
-              "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter | GB/s (model) "
-              "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
+  std::printf(
+      "| request | backend | nodes | triangles | levels | iterations | equiv. iter "
+      "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter | GB/s (model) "
+      "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   for (const std::string& path : opt.requests) {
@@ -135,29 +143,29 @@ int main(int argc, char** argv) {
       // Bars of a valid mesh: each interior edge is shared by two triangles.
       const int64_t bars = static_cast<int64_t>(
           (3 * best.mesh.triangles.size() + best.mesh.boundary_edges.size()) / 2);
-      const double gbps = us_per_step > 0.0
-                              ? meshd::iteration_bytes(static_cast<int64_t>(best.mesh.points.size()),
-                                                       bars, !compiled.size.uniform()) /
-                                    (us_per_step * 1e3)
-                              : 0.0;
-      std::printf("| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d | %lld | %.3f | %.3f "
-                  "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
-                  name.c_str(), engine->name(), best.mesh.points.size(),
-                  best.mesh.triangles.size(), s.levels, steps, s.equivalent_iterations,
-                  s.retriangulations, s.retriangulations - s.full_triangulations,
-                  s.full_triangulations, s.repair_fallbacks, static_cast<long long>(s.flips),
-                  s.t_triangulation, s.t_forces, us_per_step, gbps,
-                  s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
-                  best.quality.min_angle_deg,
-                  validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
+      const double gbps =
+          us_per_step > 0.0 ? meshd::iteration_bytes(static_cast<int64_t>(best.mesh.points.size()),
+                                                     bars, !compiled.size.uniform()) /
+                                  (us_per_step * 1e3)
+                            : 0.0;
+      std::printf(
+          "| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d | %lld | %.3f | %.3f "
+          "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
+          name.c_str(), engine->name(), best.mesh.points.size(), best.mesh.triangles.size(),
+          s.levels, steps, s.equivalent_iterations, s.retriangulations,
+          s.retriangulations - s.full_triangulations, s.full_triangulations, s.repair_fallbacks,
+          static_cast<long long>(s.flips), s.t_triangulation, s.t_forces, us_per_step, gbps,
+          s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
+          best.quality.min_angle_deg,
+          validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
       if (!validity.problems.empty() || !s.converged) ++failures;
       for (const std::string& out : opt.outputs) {
         const std::string file = expand(out, name);
         meshd::write_mesh_file(best.mesh, file, meshd::format_from_path(file));
       }
     } catch (const meshd::Error& e) {
-      std::fprintf(stderr, "meshbench: %s: %s: %s\n", path.c_str(), meshd::error_code_name(e.code()),
-                   e.what());
+      std::fprintf(stderr, "meshbench: %s: %s: %s\n", path.c_str(),
+                   meshd::error_code_name(e.code()), e.what());
       ++failures;
     }
   }

@@ -10,9 +10,9 @@ void throw_cuda_error(cudaError_t error, const char* call, const char* file, int
   cudaGetLastError();  // clear a sticky-free error so that the next job starts clean
   const ErrorCode code =
       error == cudaErrorMemoryAllocation ? ErrorCode::kResourceExhausted : ErrorCode::kInternal;
-  throw Error(code, "", std::string("CUDA ") + cudaGetErrorName(error) + " (" +
-                            cudaGetErrorString(error) + ") in " + call + " at " + file + ":" +
-                            std::to_string(line));
+  throw Error(code, "",
+              std::string("CUDA ") + cudaGetErrorName(error) + " (" + cudaGetErrorString(error) +
+                  ") in " + call + " at " + file + ":" + std::to_string(line));
 }
 
 void check_launch(const char* kernel, const char* file, int line) {

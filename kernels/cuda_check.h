@@ -15,11 +15,11 @@ void check_launch(const char* kernel, const char* file, int line);
 
 }  // namespace meshd::gpu
 
-#define MESHD_CUDA_CHECK(call)                                                     \
-  do {                                                                             \
-    const cudaError_t meshd_err_ = (call);                                         \
-    if (meshd_err_ != cudaSuccess)                                                 \
-      ::meshd::gpu::throw_cuda_error(meshd_err_, #call, __FILE__, __LINE__);       \
+#define MESHD_CUDA_CHECK(call)                                               \
+  do {                                                                       \
+    const cudaError_t meshd_err_ = (call);                                   \
+    if (meshd_err_ != cudaSuccess)                                           \
+      ::meshd::gpu::throw_cuda_error(meshd_err_, #call, __FILE__, __LINE__); \
   } while (0)
 
 #define MESHD_CHECK_LAUNCH(kernel) ::meshd::gpu::check_launch(kernel, __FILE__, __LINE__)

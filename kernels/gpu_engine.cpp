@@ -16,8 +16,8 @@ namespace meshd {
 
 using gpu::Bar;
 using gpu::BarSums;
-using gpu::StepSums;
 using gpu::DeviceBuffer;
+using gpu::StepSums;
 using gpu::Tri;
 
 namespace {
@@ -94,7 +94,7 @@ double measure_copy_bandwidth(int device) {
 
 int64_t GpuEngine::device_allocations() { return gpu::AllocationStats::mallocs().load(); }
 
-// ---- State ----------------------------------------------------------------------------------------
+// ---- State --------------------------------------------------------------------------------------
 
 struct GpuEngine::Impl {
   int device = 0;
@@ -146,9 +146,10 @@ struct GpuEngine::Impl {
     size_terms.upload(prob.size.terms.data(), prob.size.terms.size(), stream);
     fd = {geometry_code.data(), static_cast<uint32_t>(prob.geometry.code.size()),
           geometry_params.data()};
-    fh = {{size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()),
-           size_params.data()},
-          size_terms.data(), static_cast<uint32_t>(prob.size.terms.size())};
+    fh = {
+        {size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()), size_params.data()},
+        size_terms.data(),
+        static_cast<uint32_t>(prob.size.terms.size())};
     uniform = prob.size.uniform();
     nfix = static_cast<int64_t>(prob.fixed_points.size());
     fixed.upload(prob.fixed_points.data(), prob.fixed_points.size(), stream);
@@ -230,8 +231,8 @@ struct GpuEngine::Impl {
     tris.upload(reinterpret_cast<const Tri*>(dt.triangles.data()), dt.triangles.size(), stream);
     nbrs.upload(reinterpret_cast<const Tri*>(dt.neighbors.data()), dt.neighbors.size(), stream);
     flipped_round.resize(tris.size());
-    MESHD_CUDA_CHECK(
-        cudaMemsetAsync(flipped_round.data(), 0xff, flipped_round.size() * sizeof(int32_t), stream));
+    MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff,
+                                     flipped_round.size() * sizeof(int32_t), stream));
   }
 
   void reset_counters() {
@@ -240,7 +241,8 @@ struct GpuEngine::Impl {
   }
   const gpu::TopologyCounters& read_counters() {
     MESHD_CUDA_CHECK(cudaMemcpyAsync(h_counters.get(), counters.data(),
-                                     sizeof(gpu::TopologyCounters), cudaMemcpyDeviceToHost, stream));
+                                     sizeof(gpu::TopologyCounters), cudaMemcpyDeviceToHost,
+                                     stream));
     sync();
     return *h_counters.get();
   }
@@ -273,7 +275,8 @@ struct GpuEngine::Impl {
       MESHD_CUDA_CHECK(cudaMemcpyAsync(nbrs.data(), nbrs_tmp.data(), alive * sizeof(Tri),
                                        cudaMemcpyDeviceToDevice, stream));
       flipped_round.resize(alive);
-      MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
+      MESHD_CUDA_CHECK(
+          cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
     }
     const int64_t mt = static_cast<int64_t>(tris.size());
     vote.resize(mt);
@@ -333,8 +336,9 @@ struct GpuEngine::Impl {
     std::vector<int32_t> ids(undecided_count);
     std::vector<Vec2> host_p(n);
     std::vector<Tri> host_t(tris.size()), host_n(nbrs.size());
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(ids.data(), undecided.data(), undecided_count * sizeof(int32_t),
-                                     cudaMemcpyDeviceToHost, stream));
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(ids.data(), undecided.data(),
+                                     undecided_count * sizeof(int32_t), cudaMemcpyDeviceToHost,
+                                     stream));
     p.download(host_p.data(), stream);
     tris.download(host_t.data(), stream);
     nbrs.download(host_n.data(), stream);
@@ -396,7 +400,8 @@ struct GpuEngine::Impl {
     int64_t kept = 0;
     if (m > 0) {
       flags.resize(m);
-      MESHD_CUDA_CHECK(cudaMemcpyAsync(flags.data(), keep.data(), m, cudaMemcpyDeviceToDevice, stream));
+      MESHD_CUDA_CHECK(
+          cudaMemcpyAsync(flags.data(), keep.data(), m, cudaMemcpyDeviceToDevice, stream));
       position.resize(m);
       gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
       kept = last_total(position, keep);
@@ -414,9 +419,9 @@ namespace {
 int checked_device(int device) {
   const int count = gpu_device_count();
   if (device < 0 || device >= count) {
-    throw Error(ErrorCode::kUnavailable, "",
-                "no CUDA device " + std::to_string(device) + " (" + std::to_string(count) +
-                    " visible)");
+    throw Error(
+        ErrorCode::kUnavailable, "",
+        "no CUDA device " + std::to_string(device) + " (" + std::to_string(count) + " visible)");
   }
   MESHD_CUDA_CHECK(cudaSetDevice(device));
   return device;
@@ -448,12 +453,13 @@ int64_t GpuEngine::initialize(const CompiledProblem& problem) {
   const int64_t total = grid.nx * grid.ny;
   s.grid_size.resize(total);
   s.h_min_bits.resize(1);
-  MESHD_CUDA_CHECK(cudaMemsetAsync(s.h_min_bits.data(), 0xff, sizeof(unsigned long long), s.stream));
+  MESHD_CUDA_CHECK(
+      cudaMemsetAsync(s.h_min_bits.data(), 0xff, sizeof(unsigned long long), s.stream));
   gpu::launch_classify_grid(grid, s.fd, s.fh, geps, s.grid_size.span(), s.h_min_bits.data(),
                             s.stream);
   s.flags.resize(total);
-  gpu::launch_flag_grid(grid, s.grid_size.span(), s.h_min_bits.data(), problem.seed,
-                        s.fixed.span(), s.flags.span(), s.stream);
+  gpu::launch_flag_grid(grid, s.grid_size.span(), s.h_min_bits.data(), problem.seed, s.fixed.span(),
+                        s.flags.span(), s.stream);
   s.position.resize(total);
   gpu::exclusive_scan(s.flags.data(), s.position.data(), total, s.temp, s.stream);
   const int64_t kept = s.last_total(s.position, s.flags);

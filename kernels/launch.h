@@ -70,11 +70,11 @@ void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, doubl
                          cudaStream_t stream);
 
 struct MoveArgs {
-  DeviceSpan<const Vec2> p;        // #N, positions now
-  DeviceSpan<Vec2> p_next;         // #N, positions after the step
-  DeviceSpan<const Vec2> p_old;    // #N, positions at the last triangulation
-  DeviceSpan<Vec2> velocity;       // #N, last step (momentum), updated
-  DeviceSpan<uint8_t> on_boundary;  // #N, written: near the boundary after the step
+  DeviceSpan<const Vec2> p;              // #N, positions now
+  DeviceSpan<Vec2> p_next;               // #N, positions after the step
+  DeviceSpan<const Vec2> p_old;          // #N, positions at the last triangulation
+  DeviceSpan<Vec2> velocity;             // #N, last step (momentum), updated
+  DeviceSpan<uint8_t> on_boundary;       // #N, written: near the boundary after the step
   DeviceSpan<const int32_t> csr_offset;  // #N + 1
   DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end
   DeviceSpan<const Bar> bars;
@@ -96,7 +96,7 @@ void launch_mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> le
                          DeviceSpan<const double> size, const double* scale, int64_t nfix,
                          DeviceSpan<uint8_t> keep, cudaStream_t stream);
 
-// ---- topology.cu: triangulation repair, filter, bars ------------------------------------------------
+// ---- topology.cu: triangulation repair, filter, bars --------------------------------------------
 
 struct TopologyCounters {
   int32_t fatal;       // inverted kept triangles that are not boundary slivers

@@ -65,7 +65,8 @@ void launch_flag_grid(const InitialGrid& grid, DeviceSpan<const double> size,
                       const unsigned long long* h_min_bits, uint64_t seed,
                       DeviceSpan<const Vec2> fixed, DeviceSpan<uint8_t> flag, cudaStream_t stream) {
   if (flag.size == 0) return;
-  flag_grid<<<blocks_for(flag.size), kBlock, 0, stream>>>(grid, size, h_min_bits, seed, fixed, flag);
+  flag_grid<<<blocks_for(flag.size), kBlock, 0, stream>>>(grid, size, h_min_bits, seed, fixed,
+                                                          flag);
   MESHD_CHECK_LAUNCH("flag_grid");
 }
 

@@ -49,8 +49,9 @@ __global__ void check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri
 }
 
 __global__ void compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
-                                  DeviceSpan<const uint8_t> alive, DeviceSpan<const int32_t> position,
-                                  DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out) {
+                                  DeviceSpan<const uint8_t> alive,
+                                  DeviceSpan<const int32_t> position, DeviceSpan<Tri> tris_out,
+                                  DeviceSpan<Tri> nbrs_out) {
   const int64_t t = thread_index();
   if (t >= tris.size || !alive[t]) return;
   Tri n;
@@ -72,7 +73,8 @@ __global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> 
     if (u <= t) continue;  // each interior edge once, from its lower triangle
     const Tri tri = tris[t];
     const int32_t d = tris[u].v[slot_of(nbrs[u], static_cast<int32_t>(t))];
-    const int s = in_circle_filtered(p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]);
+    const int s =
+        in_circle_filtered(p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]);
     const int32_t id = static_cast<int32_t>(t) * 3 + k;
     if (s > 0) {
       atomicMin(&vote[t], id);
@@ -177,7 +179,8 @@ __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbr
   if (t >= tris.size) return;
   int32_t at = position[t];
   for (int k = 0; k < 3; ++k)
-    if (is_bar(t, nbrs[t].v[k], keep)) bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
+    if (is_bar(t, nbrs[t].v[k], keep))
+      bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
 }
 
 __global__ void bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key,

@@ -18,13 +18,13 @@ namespace meshd {
 // What one request may ask for. The defaults are the ones quoted in the proto comments; a
 // server may lower or raise them (a deployment with small GPUs lowers max_nodes).
 struct ConversionLimits {
-  int64_t max_nodes = 5'000'000;       // estimated node count (RESOURCE_EXHAUSTED above)
-  int max_tree_depth = 32;             // levels of one Shape tree; a lone primitive is 1
-  int max_tree_nodes = 10'000;         // Shape nodes in one tree (the geometry, or a size term's)
-  int max_polygon_vertices = 10'000;   // vertices of one polygon (distance costs O(V))
-  double max_size_ratio = 1000;        // bound on (largest h) / (smallest h) of the size field
-  int max_size_terms = 100;            // terms of the size field
-  int max_fixed_points = 100'000;      // entries of fixed_points
+  int64_t max_nodes = 5'000'000;      // estimated node count (RESOURCE_EXHAUSTED above)
+  int max_tree_depth = 32;            // levels of one Shape tree; a lone primitive is 1
+  int max_tree_nodes = 10'000;        // Shape nodes in one tree (the geometry, or a size term's)
+  int max_polygon_vertices = 10'000;  // vertices of one polygon (distance costs O(V))
+  double max_size_ratio = 1000;       // bound on (largest h) / (smallest h) of the size field
+  int max_size_terms = 100;           // terms of the size field
+  int max_fixed_points = 100'000;     // entries of fixed_points
 };
 
 // Validates `request` against the proto's documented ranges and `limits`, and converts it.

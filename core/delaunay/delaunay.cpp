@@ -37,7 +37,8 @@ Triangulation delaunay_triangulate(const std::vector<Vec2>& points) {
     if (dt.is_infinite(f)) f->info() = -1;
   out.neighbors.reserve(out.triangles.size());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-    out.neighbors.push_back({f->neighbor(0)->info(), f->neighbor(1)->info(), f->neighbor(2)->info()});
+    out.neighbors.push_back(
+        {f->neighbor(0)->info(), f->neighbor(1)->info(), f->neighbor(2)->info()});
   return out;
 }
 

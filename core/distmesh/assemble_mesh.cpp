@@ -45,7 +45,8 @@ Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& poin
   for (size_t prim = 0; prim < owner_tag.size(); ++prim) {
     if (owner_tag[prim] < 0) continue;
     const std::string& name = problem.geometry.primitives[prim].name;
-    auto [it, inserted] = group_of_name.emplace(name, static_cast<int32_t>(mesh.boundary_names.size()));
+    auto [it, inserted] =
+        group_of_name.emplace(name, static_cast<int32_t>(mesh.boundary_names.size()));
     if (inserted) mesh.boundary_names.push_back(name);
     group_of_primitive[prim] = it->second;
   }

@@ -45,7 +45,8 @@ CompiledProblem compile_problem(const Problem& problem) {
   out.seed = problem.seed;
 
   const Box derived = program_bounds(out.geometry);
-  if (is_empty(derived)) throw_invalid("geometry", "the domain is empty (its intersection is empty)");
+  if (is_empty(derived))
+    throw_invalid("geometry", "the domain is empty (its intersection is empty)");
   if (problem.bbox) {
     out.bbox = *problem.bbox;
   } else if (!is_bounded(derived)) {
@@ -67,8 +68,8 @@ CompiledProblem compile_problem(const Problem& problem) {
     const double d = eval_sdf(out.geometry.view(), p);
     if (d > geps) {
       std::ostringstream msg;
-      msg << "must lie inside the domain or on its boundary (distance " << d << " > "
-          << geps << " = geps * h0)";
+      msg << "must lie inside the domain or on its boundary (distance " << d << " > " << geps
+          << " = geps * h0)";
       throw_invalid("fixed_points[" + std::to_string(i) + "]", msg.str());
     }
     add_unique(out.fixed_points, p, tol);

@@ -189,7 +189,8 @@ void CpuEngine::reset_node_state() {
   velocity_.assign(p_.size(), Vec2{});
   on_boundary_.assign(p_.size(), 0);
   for (int64_t f = 0; f < nfix_; ++f)
-    on_boundary_[f] = eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundaryRelative * problem_->h0;
+    on_boundary_[f] =
+        eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundaryRelative * problem_->h0;
   dt_ = {};
   triangles_.clear();
   bars_.clear();

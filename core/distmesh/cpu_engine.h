@@ -3,8 +3,9 @@
 // Invariants between calls: p_ holds the nodes, fixed ones first (indices < nfix_); after a
 // retriangulation, dt_ is the Delaunay triangulation of p_ (repaired by edge flips when the
 // points only drifted, rebuilt by CGAL otherwise), triangles_ those of its triangles whose
-// centroid lies inside, bars_ their unique edges, and bar_csr_ lists for each node the bars that end there, so that each node sums
-// its forces alone: no atomics, and the same bits for any number of threads.
+// centroid lies inside, bars_ their unique edges, and bar_csr_ lists for each node the bars that
+// end there, so that each node sums its forces alone: no atomics, and the same bits for any number
+// of threads.
 #pragma once
 
 #include <array>
@@ -45,10 +46,12 @@ class CpuEngine final : public Engine {
 
   ThreadPool& pool_;
   const CompiledProblem* problem_ = nullptr;
-  std::vector<Vec2> p_;      // #N by 2
+  std::vector<Vec2> p_;  // #N by 2
   std::vector<Vec2> pold_;
   std::vector<Vec2> velocity_;
-  std::vector<char> on_boundary_;  // #N: near the boundary at the last step (fixed: at load)  // #N by 2, the last step (momentum)   // #N by 2, positions at the last triangulation
+  std::vector<char>
+      on_boundary_;  // #N: near the boundary at the last step (fixed: at load)  // #N by 2, the
+                     // last step (momentum)   // #N by 2, positions at the last triangulation
   int64_t nfix_ = 0;
   Triangulation dt_;                               // the full Delaunay triangulation
   std::vector<char> dt_keep_;                      // #M of dt_: centroid inside

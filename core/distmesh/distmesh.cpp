@@ -1,7 +1,7 @@
 #include "core/distmesh/distmesh.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -9,8 +9,8 @@
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/cleanup.h"
 #include "core/distmesh/node_estimate.h"
-#include "core/distmesh/refine.h"
 #include "core/distmesh/optimize_worst.h"
+#include "core/distmesh/refine.h"
 
 namespace meshd {
 namespace {
@@ -68,11 +68,12 @@ class Loop {
       }
       s.t_initial += seconds_since(t);
       triangulate(true);
-      // 3-8. Relax until no interior node moves more than dptol * h0.
+      // 3-8. Relax until the interior has settled (the termination test of params.h).
       const int before = s.iterations;
       const int budget = std::max(1, current_->params.max_iterations - s.iterations);
       s.converged = relax(budget, true, s.iterations);
-      s.equivalent_iterations += (s.iterations - before) * static_cast<double>(engine_.node_count());
+      s.equivalent_iterations +=
+          (s.iterations - before) * static_cast<double>(engine_.node_count());
     }
     s.levels = static_cast<int>(levels.size());
     s.equivalent_iterations /= static_cast<double>(engine_.node_count());

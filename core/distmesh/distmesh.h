@@ -12,14 +12,14 @@
 namespace meshd {
 
 struct RunStats {
-  int iterations = 0;          // of the main loop over all levels, clean-up not included
-  int levels = 1;              // multilevel: meshes at h0 * 2^k, k = levels-1 .. 0
+  int iterations = 0;                // of the main loop over all levels, clean-up not included
+  int levels = 1;                    // multilevel: meshes at h0 * 2^k, k = levels-1 .. 0
   double equivalent_iterations = 0;  // sum of iterations * nodes of each level / final nodes
-  bool converged = false;      // false: stopped at max_iterations
-  int retriangulations = 0;    // all triangulations, the first included
+  bool converged = false;            // false: stopped at max_iterations
+  int retriangulations = 0;          // all triangulations, the first included
   int full_triangulations = 0;
   int64_t flips = 0;
-  int repair_fallbacks = 0;    // repairs that found an inverted triangle and rebuilt instead
+  int repair_fallbacks = 0;     // repairs that found an inverted triangle and rebuilt instead
   int64_t density_removed = 0;  // points removed by density control
   int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
   int cleanup_iterations = 0;

@@ -28,16 +28,17 @@ inline double iteration_bytes(int64_t nodes, int64_t bars, bool graded) {
 }
 
 struct StepResult {
-  double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
+  double max_move = 0.0;  // largest move of an interior node (d < -geps) this step, / h0
   double max_drift = 0.0;
-  double rms_move = 0.0;   // root mean square of the interior moves, / h0  // largest |p - p_at_last_triangulation| after the step, / h0
+  double rms_move = 0.0;  // root mean square of the interior moves, / h0  // largest |p -
+                          // p_at_last_triangulation| after the step, / h0
 };
 
 struct TopologyStats {
   int64_t triangles = 0;  // kept inside the domain
   int64_t bars = 0;
-  int64_t flips = 0;      // edge flips of a repair
-  bool full = true;       // a full triangulation rather than a repair
+  int64_t flips = 0;           // edge flips of a repair
+  bool full = true;            // a full triangulation rather than a repair
   bool repair_failed = false;  // a repair was asked for but found an inverted triangle
   int64_t dropped = 0;         // turned-over boundary slivers a repair removed
 };

@@ -1,8 +1,8 @@
 // Step 1-2 of DistMesh, per grid point, shared by the CPU and GPU engines so that both start
 // from the same points: an equilateral grid over the box (rows about h0 * sqrt(3)/2 apart,
-// every other row shifted by half a column), points with fd < geps kept, then each kept with probability
-// (h_min / h(p))^2 through a counter-based hash of (seed, grid index), which needs no shared
-// random state and gives the same draw wherever it is evaluated.
+// every other row shifted by half a column), points with fd < geps kept, then each kept with
+// probability (h_min / h(p))^2 through a counter-based hash of (seed, grid index), which needs no
+// shared random state and gives the same draw wherever it is evaluated.
 #pragma once
 
 #include <cstdint>
@@ -14,9 +14,9 @@ namespace meshd {
 
 struct InitialGrid {
   Vec2 origin;
-  double h0;  // the h0 asked for
-  double dx;  // column spacing: h0 stretched so that columns land on both sides of the box
-  double dy;  // row spacing: h0 sqrt(3)/2 stretched so that rows land on its bottom and top
+  double h0;   // the h0 asked for
+  double dx;   // column spacing: h0 stretched so that columns land on both sides of the box
+  double dy;   // row spacing: h0 sqrt(3)/2 stretched so that rows land on its bottom and top
   int64_t nx;  // points per row
   int64_t ny;  // rows
 };
@@ -32,7 +32,8 @@ MESHD_HD inline InitialGrid make_initial_grid(Box bbox, double h0) {
   InitialGrid g;
   g.origin = bbox.min;
   g.h0 = h0;
-  const int64_t cols = static_cast<int64_t>(w / h0 + 0.5), rows = static_cast<int64_t>(h / row + 0.5);
+  const int64_t cols = static_cast<int64_t>(w / h0 + 0.5),
+                rows = static_cast<int64_t>(h / row + 0.5);
   g.dx = cols > 0 ? w / static_cast<double>(cols) : h0;
   g.dy = rows > 0 ? h / static_cast<double>(rows) : row;
   g.nx = cols + 1;

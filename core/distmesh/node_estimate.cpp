@@ -40,7 +40,8 @@ double inverse_size_integral(const CompiledProblem& c) {
 
 double estimate_node_count(const CompiledProblem& problem) {
   const double integral = inverse_size_integral(problem);
-  if (integral <= 0.0) throw_invalid("geometry", "the domain is empty or thinner than its box / 400");
+  if (integral <= 0.0)
+    throw_invalid("geometry", "the domain is empty or thinner than its box / 400");
   return 2.0 / std::sqrt(3.0) * integral / (problem.h0 * problem.h0);
 }
 

@@ -14,7 +14,7 @@ struct Progress {
   int iteration = 0;
   double max_move = 0.0;  // largest interior move of the last step, relative to h0
   int retriangulations = 0;
-  int64_t flips = 0;      // edge flips of topology repairs so far
+  int64_t flips = 0;  // edge flips of topology repairs so far
   int64_t nodes = 0;
   double elapsed_s = 0.0;
 };

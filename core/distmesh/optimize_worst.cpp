@@ -112,13 +112,16 @@ class Optimizer {
           dirs[n_dirs++] = {-g.y / len, g.x / len};
           dirs[n_dirs++] = {g.y / len, -g.x / len};
         } else {
-          for (int k = 0; k < 8; ++k) dirs[n_dirs++] = {std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)};
+          for (int k = 0; k < 8; ++k)
+            dirs[n_dirs++] = {std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)};
         }
         Vec2 best_x = p_[v];
         for (int k = 0; k < n_dirs; ++k) {
           Vec2 x = p_[v] + step * dirs[k];
-          if (boundary) x = project_to_boundary(fd_, x, deps_);
-          else if (eval_sdf(fd_, x) >= 0.0) continue;
+          if (boundary)
+            x = project_to_boundary(fd_, x, deps_);
+          else if (eval_sdf(fd_, x) >= 0.0)
+            continue;
           const double q = star_quality(v, x);
           if (q > best) {
             best = q;

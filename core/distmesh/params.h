@@ -10,13 +10,13 @@ struct Params {
   // under dptol * h0 and the largest under 10 dptol * h0. distmesh2d.m waits for the largest
   // move alone; on G2 that takes ~10x the iterations for a q_mean 0.001 higher.
   double dptol = 0.001;
-  double ttol = 0.1;      // retriangulate when a node moved more than ttol * h0 since the last
-  double fscale = 1.2;    // L0 = Fscale * (scaled size): bars push until this much longer
-  double deltat = 0.2;    // Euler step
+  double ttol = 0.1;    // retriangulate when a node moved more than ttol * h0 since the last
+  double fscale = 1.2;  // L0 = Fscale * (scaled size): bars push until this much longer
+  double deltat = 0.2;  // Euler step
   // Heavy-ball momentum: each step adds momentum times the previous one. 0 is distmesh2d.m's
   // plain Euler step; 0.5 cuts the iterations about 3x at equal quality.
   double momentum = 0.5;
-  double geps = 0.001;    // "inside" tolerance on the distance: geps * h0
+  double geps = 0.001;                   // "inside" tolerance on the distance: geps * h0
   double deps = 1.4901161193847656e-08;  // finite-difference step of the gradient: deps * h0
   int density_control_interval = 30;     // iterations between density checks; 0 turns it off
   int max_iterations = 10000;            // hard cap; the result says whether it converged

@@ -20,7 +20,7 @@ struct Problem {
   std::vector<Vec2> fixed_points;  // kept as nodes, exactly
   bool auto_corners = true;        // polygon and rectangle corners on the boundary become fixed
   Params params;
-  uint64_t seed = 0;               // for the size-based rejection of initial points
+  uint64_t seed = 0;  // for the size-based rejection of initial points
 };
 
 }  // namespace meshd

@@ -17,12 +17,12 @@ class Emitter {
 
   // Emits `shape` under the accumulated transform; returns the stack slots it needs.
   int emit(const Shape& shape, const Similarity& t) {
-    const int need = std::visit([&](const auto& node) { return emit_node(shape, node, t); },
-                                shape.node);
+    const int need =
+        std::visit([&](const auto& node) { return emit_node(shape, node, t); }, shape.node);
     if (need > kMaxProgramStack) {
       throw_invalid(shape.path, "the tree is too deep to evaluate (needs " + std::to_string(need) +
-                                    " stack slots, at most " +
-                                    std::to_string(kMaxProgramStack) + ")");
+                                    " stack slots, at most " + std::to_string(kMaxProgramStack) +
+                                    ")");
     }
     return need;
   }
@@ -71,7 +71,8 @@ class Emitter {
     // {n.p <= c} maps to {R n . p' <= scale c + R n . offset}; store the unit normal.
     const double len = norm(h.normal);
     const double cs = std::cos(t.angle), sn = std::sin(t.angle);
-    const Vec2 n{(cs * h.normal.x - sn * h.normal.y) / len, (sn * h.normal.x + cs * h.normal.y) / len};
+    const Vec2 n{(cs * h.normal.x - sn * h.normal.y) / len,
+                 (sn * h.normal.x + cs * h.normal.y) / len};
     const double c = t.scale * h.offset / len + dot(n, t.offset);
     return push_primitive(s, Op::kHalfPlane, {n.x, n.y, c}, "half_plane");
   }
@@ -90,7 +91,8 @@ class Emitter {
     program_.params.push_back(static_cast<double>(poly.vertices.size()));
     program_.params.insert(program_.params.end(), corners.begin(), corners.end());
     info.corners = std::move(corners);
-    program_.code.push_back({Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size())});
+    program_.code.push_back(
+        {Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size())});
     program_.primitives.push_back(std::move(info));
     return 1;
   }

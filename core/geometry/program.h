@@ -33,8 +33,8 @@ struct Instruction {
 
 // What the host needs to know about each primitive beyond its distance.
 struct PrimitiveInfo {
-  std::string name;          // boundary group name
-  std::string path;          // request field path, for errors
+  std::string name;             // boundary group name
+  std::string path;             // request field path, for errors
   std::vector<double> corners;  // #C by 2 (flattened): polygon and rectangle corners, transformed
 };
 

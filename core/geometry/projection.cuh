@@ -8,7 +8,8 @@ namespace meshd {
 
 // Forward-difference gradient of fd at p, where fd(p) = d; step deps (absolute).
 MESHD_HD inline Vec2 sdf_gradient(ProgramView fd, Vec2 p, double d, double deps) {
-  return {(eval_sdf(fd, {p.x + deps, p.y}) - d) / deps, (eval_sdf(fd, {p.x, p.y + deps}) - d) / deps};
+  return {(eval_sdf(fd, {p.x + deps, p.y}) - d) / deps,
+          (eval_sdf(fd, {p.x, p.y + deps}) - d) / deps};
 }
 
 // One Newton step towards the zero level set: p - d grad / |grad|^2, with fd(p) = d.

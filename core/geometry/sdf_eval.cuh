@@ -71,17 +71,23 @@ MESHD_HD inline double ellipse_distance_quadrant(double e0, double e1, double y0
       // G(lo) >= 0: one of its two terms is 1 there. Starting at the larger bound keeps Newton
       // within a small factor of the root (from t = z1 alone a circle needs ~100 steps).
       double lo = max2(z1, n0 - c);
-      double hi = g < 0.0 ? 1.0 : length2d(n0, z1);    // G(hi) <= 0
+      double hi = g < 0.0 ? 1.0 : length2d(n0, z1);  // G(hi) <= 0
       double t = lo;
       for (int it = 0; it < 100; ++it) {
         const double a = n0 / (t + c), b = z1 / t;
         const double G = a * a + b * b - 1.0;
         if (G == 0.0) break;
-        if (G > 0.0) lo = t; else hi = t;
+        if (G > 0.0)
+          lo = t;
+        else
+          hi = t;
         const double dG = -2.0 * (a * a / (t + c) + b * b / t);
         double next = t - G / dG;
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (fabs(next - t) <= 1e-15 * t) { t = next; break; }
+        if (fabs(next - t) <= 1e-15 * t) {
+          t = next;
+          break;
+        }
         t = next;
       }
       const double x0 = r0 * y0 / (t + c), x1 = y1 / t;
@@ -110,12 +116,18 @@ MESHD_HD inline double sdf_ellipse(const double* q, Vec2 p) {
 
 MESHD_HD inline double sdf_primitive(Op op, const double* q, Vec2 p) {
   switch (op) {
-    case Op::kCircle: return sdf_circle(q, p);
-    case Op::kBox: return sdf_box(q, p);
-    case Op::kEllipse: return sdf_ellipse(q, p);
-    case Op::kHalfPlane: return sdf_half_plane(q, p);
-    case Op::kPolygon: return sdf_polygon(q, p);
-    default: return NAN;
+    case Op::kCircle:
+      return sdf_circle(q, p);
+    case Op::kBox:
+      return sdf_box(q, p);
+    case Op::kEllipse:
+      return sdf_ellipse(q, p);
+    case Op::kHalfPlane:
+      return sdf_half_plane(q, p);
+    case Op::kPolygon:
+      return sdf_polygon(q, p);
+    default:
+      return NAN;
   }
 }
 
@@ -132,11 +144,17 @@ MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t
     switch (ins.op) {
       case Op::kMin:
         --top;
-        if (value[top + 1] < value[top]) { value[top] = value[top + 1]; who[top] = who[top + 1]; }
+        if (value[top + 1] < value[top]) {
+          value[top] = value[top + 1];
+          who[top] = who[top + 1];
+        }
         break;
       case Op::kMax:
         --top;
-        if (value[top + 1] > value[top]) { value[top] = value[top + 1]; who[top] = who[top + 1]; }
+        if (value[top + 1] > value[top]) {
+          value[top] = value[top + 1];
+          who[top] = who[top + 1];
+        }
         break;
       case Op::kNegate:
         value[top] = -value[top];

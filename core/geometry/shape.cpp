@@ -37,16 +37,14 @@ int fold_children(const Shape& shape, int leaf, Fn fn) {
 }  // namespace
 
 int tree_depth(const Shape& shape) {
-  const int below = fold_children(shape, 0, [](int acc, const Shape& child) {
-    return std::max(acc, tree_depth(child));
-  });
+  const int below = fold_children(
+      shape, 0, [](int acc, const Shape& child) { return std::max(acc, tree_depth(child)); });
   return below + 1;
 }
 
 int tree_size(const Shape& shape) {
-  return 1 + fold_children(shape, 0, [](int acc, const Shape& child) {
-           return acc + tree_size(child);
-         });
+  return 1 + fold_children(shape, 0,
+                           [](int acc, const Shape& child) { return acc + tree_size(child); });
 }
 
 }  // namespace meshd

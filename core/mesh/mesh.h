@@ -16,11 +16,11 @@
 namespace meshd {
 
 struct Mesh {
-  std::vector<Vec2> points;                           // #N by 2, request length unit
-  std::vector<std::array<int32_t, 3>> triangles;      // #M by 3, counter-clockwise
+  std::vector<Vec2> points;                            // #N by 2, request length unit
+  std::vector<std::array<int32_t, 3>> triangles;       // #M by 3, counter-clockwise
   std::vector<std::array<int32_t, 2>> boundary_edges;  // #E by 2, domain on the left
-  std::vector<int32_t> boundary_tags;                 // #E, index into boundary_names
-  std::vector<std::string> boundary_names;            // one per boundary group
+  std::vector<int32_t> boundary_tags;                  // #E, index into boundary_names
+  std::vector<std::string> boundary_names;             // one per boundary group
 };
 
 // Physical group numbering shared by every writer: the domain is 1 (dimension 2), boundary group

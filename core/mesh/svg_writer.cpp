@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/mesh/quality.h"
-#include "core/mesh/xml_escaped.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
+#include "core/mesh/xml_escaped.h"
 
 namespace meshd {
 namespace {

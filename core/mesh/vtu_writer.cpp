@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/mesh/quality.h"
-#include "core/mesh/xml_escaped.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
+#include "core/mesh/xml_escaped.h"
 
 namespace meshd {
 namespace {
@@ -55,8 +55,7 @@ class Base64Encoder {
   int num_pending_ = 0;
 };
 
-// ---- DataArray elements
-// --------------------------------------------------------------------------
+// ---- DataArray elements -------------------------------------------------------------------------
 
 template <typename T>
 const char* vtk_type_name();

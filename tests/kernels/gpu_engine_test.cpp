@@ -1,11 +1,13 @@
 // GPU engine against the CPU engine on the same inputs: each step on random inputs, then whole
 // meshes of G1-G5. Skips with a message where no CUDA device is visible (CI).
+#include "kernels/gpu_engine.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <map>
+#include <random>
 #include <set>
 
 #include "core/common/error.h"
@@ -16,13 +18,12 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
-#include "kernels/gpu_engine.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
 
 namespace meshd {
 namespace {
 
-#define SKIP_WITHOUT_GPU()                                                  \
+#define SKIP_WITHOUT_GPU() \
   if (gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
 
 using Triangles = std::vector<std::array<int32_t, 3>>;
@@ -45,7 +46,8 @@ CompiledProblem compiled(const std::string& id, double nodes) {
 // Random points inside the domain, fixed points first.
 std::vector<Vec2> random_points(const CompiledProblem& c, size_t count, uint32_t seed) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x), uy(c.bbox.min.y, c.bbox.max.y);
+  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x),
+      uy(c.bbox.min.y, c.bbox.max.y);
   std::vector<Vec2> pts = c.fixed_points;
   while (pts.size() < count) {
     const Vec2 q{ux(rng), uy(rng)};
@@ -137,8 +139,10 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
     cpu.retriangulate(true);
     cpu.read_triangles(t_cpu);
     EXPECT_NEAR(static_cast<double>(t_gpu.size()), static_cast<double>(t_cpu.size()),
-                0.01 * t_cpu.size()) << "step " << step;
-    std::map<std::array<int32_t, 2>, std::pair<int32_t, int32_t>> opposite;  // edge -> (tri, vertex)
+                0.01 * t_cpu.size())
+        << "step " << step;
+    std::map<std::array<int32_t, 2>, std::pair<int32_t, int32_t>>
+        opposite;  // edge -> (tri, vertex)
     for (size_t t = 0; t < t_gpu.size(); ++t) {
       const auto& tri = t_gpu[t];
       ASSERT_GT(orientation_sign(pts[tri[0]], pts[tri[1]], pts[tri[2]]), 0) << "step " << step;
@@ -198,7 +202,8 @@ TEST_P(GpuAgreement, WholeMeshMatchesTheCpuEngine) {
     EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
     EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
     EXPECT_GE(rg.quality.q_min, 0.65);
-    EXPECT_NEAR(mesh_area(rg.mesh), testing::benchmark_area(id), 0.005 * testing::benchmark_area(id));
+    EXPECT_NEAR(mesh_area(rg.mesh), testing::benchmark_area(id),
+                0.005 * testing::benchmark_area(id));
     EXPECT_TRUE(rg.stats.converged);
     for (const Vec2 f : c.fixed_points) {
       EXPECT_NE(std::find(rg.mesh.points.begin(), rg.mesh.points.end(), f), rg.mesh.points.end());
@@ -207,8 +212,7 @@ TEST_P(GpuAgreement, WholeMeshMatchesTheCpuEngine) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement,
-                         ::testing::Values("G1", "G2", "G3", "G4", "G5"));
+INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement, ::testing::Values("G1", "G2", "G3", "G4", "G5"));
 
 TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
   SKIP_WITHOUT_GPU();
@@ -220,8 +224,8 @@ TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
   const MeshResult second = generate_mesh(c, gpu, nullptr, nullptr);
   EXPECT_EQ(GpuEngine::device_allocations(), allocations) << "the arena should be warm";
   EXPECT_EQ(first.mesh.points.size(), second.mesh.points.size());
-  EXPECT_TRUE(std::equal(first.mesh.points.begin(), first.mesh.points.end(),
-                         second.mesh.points.begin()));
+  EXPECT_TRUE(
+      std::equal(first.mesh.points.begin(), first.mesh.points.end(), second.mesh.points.begin()));
   EXPECT_EQ(first.mesh.triangles, second.mesh.triangles);
 }
 

@@ -31,7 +31,8 @@ Problem cluster_problem() {
   p.geometry = Shape{Circle{{0, 0}, 1}, "outer", ""};
   p.h0 = 0.125;
   p.bbox = Box{{-0.125, -0.125}, {0.125, 0.125}};
-  for (int k = 0; k < 8; ++k) p.fixed_points.push_back({std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)});
+  for (int k = 0; k < 8; ++k)
+    p.fixed_points.push_back({std::cos(k * M_PI / 4), std::sin(k * M_PI / 4)});
   p.fixed_points.push_back({std::cos(0.001), std::sin(0.001)});
   return p;
 }
@@ -307,13 +308,15 @@ TEST(CpuEngine, RemoveCrowdedPointsRemovesEndsOfShortBarsButNeverFixedNodes) {
   // Expected: the free ends of every bar with L0 > 2 L (uniform size: L0 = Fscale * rms(L)).
   const auto bars = unique_edges(s.triangles);
   double sum_l2 = 0;
-  for (const Bar& b : bars) sum_l2 += dot(s.points[b[0]] - s.points[b[1]], s.points[b[0]] - s.points[b[1]]);
+  for (const Bar& b : bars)
+    sum_l2 += dot(s.points[b[0]] - s.points[b[1]], s.points[b[0]] - s.points[b[1]]);
   const double L0 = c.params.fscale * std::sqrt(sum_l2 / static_cast<double>(bars.size()));
   std::vector<char> remove(s.points.size(), 0);
   bool fixed_pair_crowded = false;
   for (const Bar& b : bars) {
     if (!(L0 > 2 * norm(s.points[b[0]] - s.points[b[1]]))) continue;
-    if (b[0] < static_cast<int32_t>(nfix) && b[1] < static_cast<int32_t>(nfix)) fixed_pair_crowded = true;
+    if (b[0] < static_cast<int32_t>(nfix) && b[1] < static_cast<int32_t>(nfix))
+      fixed_pair_crowded = true;
     for (int32_t e : b)
       if (e >= static_cast<int32_t>(nfix)) remove[e] = 1;
   }
@@ -368,7 +371,8 @@ std::pair<std::vector<Vec2>, std::vector<double>> engine_run(const CompiledProbl
   for (int it = 0; it < 8; ++it) {
     const StepResult r = engine.move_points();
     moves.insert(moves.end(), {r.max_move, r.max_drift, r.rms_move});
-    if (r.max_drift > c.params.ttol) moves.push_back(static_cast<double>(engine.retriangulate(false).flips));
+    if (r.max_drift > c.params.ttol)
+      moves.push_back(static_cast<double>(engine.retriangulate(false).flips));
   }
   moves.push_back(static_cast<double>(engine.remove_crowded_points()));
   std::vector<Vec2> p;

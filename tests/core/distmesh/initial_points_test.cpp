@@ -109,7 +109,7 @@ TEST(InitialPoints, FixedPointsComeFirstAndPushAwayGridPoints) {
   EXPECT_EQ(static_cast<int64_t>(got.size()), 4 + inside - near_fixed);
 }
 
-// ---- Size-based rejection -------------------------------------------------------------------------
+// ---- Size-based rejection -----------------------------------------------------------------------
 
 TEST(SizeRejection, HashIsAPureFunctionOfSeedAndIndex) {
   for (uint64_t seed : {0ull, 1ull, 12345ull}) {
@@ -130,14 +130,13 @@ TEST(SizeRejection, HashIsAPureFunctionOfSeedAndIndex) {
     below_quarter += u < 0.25;
     same += hash_uniform(8, k) == u;
   }
-  EXPECT_NEAR(sum / kN, 0.5, 0.005);            // sd 0.29 / sqrt(1e5) ~ 0.001
-  EXPECT_NEAR(below_quarter, kN / 4, 700);      // sd ~ 137
+  EXPECT_NEAR(sum / kN, 0.5, 0.005);        // sd 0.29 / sqrt(1e5) ~ 0.001
+  EXPECT_NEAR(below_quarter, kN / 4, 700);  // sd ~ 137
   EXPECT_LT(same, 5);
   // Where the size is the smallest, every point is kept.
   for (int k = 0; k < 1000; ++k) EXPECT_TRUE(keep_by_size(3, k, 0.4, 0.4));
   // keep_by_size keeps exactly when the draw is under (h_min / h)^2.
-  for (int k = 0; k < 1000; ++k)
-    EXPECT_EQ(keep_by_size(3, k, 2.0, 1.0), hash_uniform(3, k) < 0.25);
+  for (int k = 0; k < 1000; ++k) EXPECT_EQ(keep_by_size(3, k, 2.0, 1.0), hash_uniform(3, k) < 0.25);
 }
 
 // The grid points G5 keeps for `seed`, computed from the formulas: fd < geps, then the draw.

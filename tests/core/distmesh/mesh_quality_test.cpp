@@ -77,12 +77,13 @@ TEST_P(BenchmarkMesh, MeetsTheTargetsOfGeometriesMd) {
   const double h0 = c.h0;
   const QualityStats& q = run.result.quality;
   const RunStats& s = run.result.stats;
-  std::printf("[ measured ] %s: h0 %.5f, nodes %zu (expected %.0f), triangles %zu, q_min %.4f, "
-              "q_mean %.4f, min angle %.1f deg, iterations %d, retriangulations %d, converged %d, "
-              "cleanup removed %lld, %.3f s\n",
-              id.c_str(), h0, m.points.size(), expected_nodes(id, h0), m.triangles.size(), q.q_min,
-              q.q_mean, q.min_angle_deg, s.iterations, s.retriangulations, s.converged,
-              static_cast<long long>(s.cleanup_removed), s.t_total);
+  std::printf(
+      "[ measured ] %s: h0 %.5f, nodes %zu (expected %.0f), triangles %zu, q_min %.4f, "
+      "q_mean %.4f, min angle %.1f deg, iterations %d, retriangulations %d, converged %d, "
+      "cleanup removed %lld, %.3f s\n",
+      id.c_str(), h0, m.points.size(), expected_nodes(id, h0), m.triangles.size(), q.q_min,
+      q.q_mean, q.min_angle_deg, s.iterations, s.retriangulations, s.converged,
+      static_cast<long long>(s.cleanup_removed), s.t_total);
 
   // A valid mesh: oriented, conforming, every node used, boundary edges and tags consistent.
   const ValidityReport report = check_validity(m);
@@ -95,7 +96,8 @@ TEST_P(BenchmarkMesh, MeetsTheTargetsOfGeometriesMd) {
   double worst_boundary = 0;
   for (const auto& e : m.boundary_edges)
     for (int32_t v : e)
-      worst_boundary = std::max(worst_boundary, std::fabs(eval_sdf(c.geometry.view(), m.points[v])));
+      worst_boundary =
+          std::max(worst_boundary, std::fabs(eval_sdf(c.geometry.view(), m.points[v])));
   EXPECT_LE(worst_boundary, 1e-3 * h0);
 
   // Fixed points (corners, polygon vertices) are nodes, bitwise.
@@ -130,7 +132,8 @@ TEST_P(BenchmarkMesh, MeetsTheTargetsOfGeometriesMd) {
     const std::string& name = m.boundary_names.at(m.boundary_tags[i]);
     const Vec2 a = m.points[m.boundary_edges[i][0]], b = m.points[m.boundary_edges[i][1]];
     if (holed) {
-      const bool on_hole = std::fabs(norm(a) - 0.5) <= 1e-3 * h0 && std::fabs(norm(b) - 0.5) <= 1e-3 * h0;
+      const bool on_hole =
+          std::fabs(norm(a) - 0.5) <= 1e-3 * h0 && std::fabs(norm(b) - 0.5) <= 1e-3 * h0;
       auto on_square = [&](Vec2 p) {
         return std::fabs(std::max(std::fabs(p.x), std::fabs(p.y)) - 1) <= 1e-3 * h0;
       };
@@ -150,8 +153,7 @@ TEST_P(BenchmarkMesh, MeetsTheTargetsOfGeometriesMd) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Geometries, BenchmarkMesh,
-                         ::testing::Values("G1", "G2", "G3", "G4", "G5"),
+INSTANTIATE_TEST_SUITE_P(Geometries, BenchmarkMesh, ::testing::Values("G1", "G2", "G3", "G4", "G5"),
                          [](const ::testing::TestParamInfo<std::string>& param) {
                            return param.param;
                          });
@@ -211,7 +213,8 @@ TEST(GenerateMesh, CancellationThrowsWithinOneIteration) {
   std::atomic<bool> cancel{false};
   CancelAt observer(3, cancel);
   try {
-    mesh("G1", 600, [](Problem&) {}, &observer, &cancel);
+    mesh(
+        "G1", 600, [](Problem&) {}, &observer, &cancel);
     FAIL() << "generate_mesh returned after cancellation";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::kCancelled) << e.what();
@@ -220,7 +223,9 @@ TEST(GenerateMesh, CancellationThrowsWithinOneIteration) {
   // Set before the start: no iteration runs.
   std::atomic<bool> already{true};
   CancelAt none(1000, already);
-  EXPECT_THROW(mesh("G1", 600, [](Problem&) {}, &none, &already), Error);
+  EXPECT_THROW(mesh(
+                   "G1", 600, [](Problem&) {}, &none, &already),
+               Error);
   EXPECT_EQ(none.last_, 0);
 }
 
@@ -283,7 +288,8 @@ void expect_observed_run(const Recorder& r, const RunStats& stats) {
 
 TEST(GenerateMesh, ObserverGetsProgressAndSnapshotsItAskedFor) {
   Recorder r;
-  const MeshRun run = mesh("G1", 600, [](Problem& p) { p.params.cleanup = false; }, &r);
+  const MeshRun run = mesh(
+      "G1", 600, [](Problem& p) { p.params.cleanup = false; }, &r);
   expect_observed_run(r, run.result.stats);
   EXPECT_EQ(r.progress.back().iteration, run.result.stats.iterations);
   EXPECT_EQ(static_cast<int>(r.progress.size()), run.result.stats.iterations);
@@ -297,12 +303,13 @@ TEST(GenerateMesh, ObserverGetsProgressAndSnapshotsItAskedFor) {
 // default parameters, 1..N, then 1 again. A client streaming progress sees time run backwards.
 TEST(GenerateMesh, ProgressIterationsKeepIncreasingThroughTheCleanup) {
   Recorder r;
-  const MeshRun run = mesh("G3", 300, [](Problem&) {}, &r);
+  const MeshRun run = mesh(
+      "G3", 300, [](Problem&) {}, &r);
   ASSERT_GT(run.result.stats.cleanup_removed, 0) << "the case should exercise the clean-up";
   for (size_t i = 1; i < r.progress.size(); ++i) {
     ASSERT_GT(r.progress[i].iteration, r.progress[i - 1].iteration)
-        << "progress " << i << " of " << r.progress.size() << " (main loop: "
-        << run.result.stats.iterations << " iterations)";
+        << "progress " << i << " of " << r.progress.size()
+        << " (main loop: " << run.result.stats.iterations << " iterations)";
   }
 }
 

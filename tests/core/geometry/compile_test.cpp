@@ -49,14 +49,13 @@ std::vector<Op> ops(const Program& p) {
 
 TEST(CompileGeometry, PostfixLayoutOfASmallTree) {
   // (circle u rectangle) \ (ellipse n half-plane)
-  const Shape tree = csg(
-      CsgOp::kDifference,
-      {csg(CsgOp::kUnion, {circle({1, 2}, 3), rectangle({-1, -2}, {3, 4})}),
-       csg(CsgOp::kIntersection,
-           {Shape{Ellipse{{0.5, 0}, 2, 1}, "", ""}, Shape{HalfPlane{{0, 2}, 1}, "", ""}})});
+  const Shape tree =
+      csg(CsgOp::kDifference, {csg(CsgOp::kUnion, {circle({1, 2}, 3), rectangle({-1, -2}, {3, 4})}),
+                               csg(CsgOp::kIntersection, {Shape{Ellipse{{0.5, 0}, 2, 1}, "", ""},
+                                                          Shape{HalfPlane{{0, 2}, 1}, "", ""}})});
   const Program p = compile_geometry(tree);
-  EXPECT_EQ(ops(p), (std::vector<Op>{Op::kCircle, Op::kBox, Op::kMin, Op::kEllipse,
-                                     Op::kHalfPlane, Op::kMax, Op::kNegate, Op::kMax}));
+  EXPECT_EQ(ops(p), (std::vector<Op>{Op::kCircle, Op::kBox, Op::kMin, Op::kEllipse, Op::kHalfPlane,
+                                     Op::kMax, Op::kNegate, Op::kMax}));
   // Primitives are numbered in tree order; operations carry -1.
   const std::vector<int32_t> prim = {0, 1, -1, 2, 3, -1, -1, -1};
   for (size_t i = 0; i < p.code.size(); ++i) EXPECT_EQ(p.code[i].primitive, prim[i]) << i;
@@ -68,7 +67,8 @@ TEST(CompileGeometry, PostfixLayoutOfASmallTree) {
                                p.params.begin() + p.code[i].operand + n);
   };
   EXPECT_EQ(params(0, 3), (std::vector<double>{1, 2, 3}));
-  EXPECT_EQ(params(1, 6), (std::vector<double>{1, 1, 2, 3, 1, 0}));  // centre, half extents, cos sin
+  EXPECT_EQ(params(1, 6),
+            (std::vector<double>{1, 1, 2, 3, 1, 0}));  // centre, half extents, cos sin
   EXPECT_EQ(params(3, 6), (std::vector<double>{0.5, 0, 2, 1, 1, 0}));
   EXPECT_EQ(params(4, 3), (std::vector<double>{0, 1, 0.5}));  // unit normal, offset / |n|
   EXPECT_EQ(p.params.size(), 3u + 6u + 6u + 3u);
@@ -120,17 +120,16 @@ TEST(CompileGeometry, NaryOperationsFoldLeftInTwoStackSlots) {
 // ---- Names --------------------------------------------------------------------------------------
 
 TEST(CompileGeometry, DefaultNamesCountPerKind) {
-  const Shape tree = csg(CsgOp::kUnion,
-                         {circle({0, 0}, 1), rectangle({0, 0}, {1, 1}), circle({3, 0}, 1),
-                          Shape{Polygon{{{0, 0}, {1, 0}, {0, 1}}}, "", ""},
-                          Shape{Ellipse{{0, 0}, 2, 1}, "", ""}, rectangle({2, 2}, {3, 3}),
-                          Shape{HalfPlane{{1, 0}, 5}, "", ""}, circle({6, 0}, 1)});
+  const Shape tree =
+      csg(CsgOp::kUnion,
+          {circle({0, 0}, 1), rectangle({0, 0}, {1, 1}), circle({3, 0}, 1),
+           Shape{Polygon{{{0, 0}, {1, 0}, {0, 1}}}, "", ""}, Shape{Ellipse{{0, 0}, 2, 1}, "", ""},
+           rectangle({2, 2}, {3, 3}), Shape{HalfPlane{{1, 0}, 5}, "", ""}, circle({6, 0}, 1)});
   const Program p = compile_geometry(tree);
   std::vector<std::string> names;
   for (const auto& prim : p.primitives) names.push_back(prim.name);
   EXPECT_EQ(names, (std::vector<std::string>{"circle1", "rectangle1", "circle2", "polygon1",
-                                             "ellipse1", "rectangle2", "half_plane1",
-                                             "circle3"}));
+                                             "ellipse1", "rectangle2", "half_plane1", "circle3"}));
 }
 
 TEST(CompileGeometry, GivenNamesAndPathsAreKept) {
@@ -141,8 +140,8 @@ TEST(CompileGeometry, GivenNamesAndPathsAreKept) {
   Shape other = circle({5, 5}, 0.5);
   other.path = "geometry.difference.shapes[2]";
   // A name under a transform is kept too.
-  const Program p = compile_geometry(
-      csg(CsgOp::kDifference, {outer, transformed(hole, 1, 0, {0.1, 0}), other}));
+  const Program p =
+      compile_geometry(csg(CsgOp::kDifference, {outer, transformed(hole, 1, 0, {0.1, 0}), other}));
   ASSERT_EQ(p.primitives.size(), 3u);
   EXPECT_EQ(p.primitives[0].name, "outer");
   EXPECT_EQ(p.primitives[0].path, "geometry.difference.shapes[0]");
@@ -151,8 +150,8 @@ TEST(CompileGeometry, GivenNamesAndPathsAreKept) {
   EXPECT_EQ(p.primitives[2].name.rfind("circle", 0), 0u) << p.primitives[2].name;
   EXPECT_EQ(p.primitives[2].path, "geometry.difference.shapes[2]");
   // Names of a tree with the same name twice are kept as given (one boundary group).
-  const Program twice = compile_geometry(
-      csg(CsgOp::kUnion, {circle({0, 0}, 1, "wall"), circle({3, 0}, 1, "wall")}));
+  const Program twice =
+      compile_geometry(csg(CsgOp::kUnion, {circle({0, 0}, 1, "wall"), circle({3, 0}, 1, "wall")}));
   EXPECT_EQ(twice.primitives[0].name, "wall");
   EXPECT_EQ(twice.primitives[1].name, "wall");
 }
@@ -231,13 +230,12 @@ TEST(ProgramBounds, UnionIntersectionDifference) {
   expect_box(program_bounds(compile_geometry(csg(CsgOp::kIntersection, {a, b}))),
              {{0.5, -1}, {1, 0.25}});
   // A difference keeps its base's box, whatever it removes.
-  expect_box(program_bounds(compile_geometry(csg(CsgOp::kDifference, {a, b}))),
-             {{-1, -1}, {1, 1}});
+  expect_box(program_bounds(compile_geometry(csg(CsgOp::kDifference, {a, b}))), {{-1, -1}, {1, 1}});
   expect_box(program_bounds(compile_geometry(csg(CsgOp::kDifference, {b, a}))),
              {{0.5, -3}, {4, 0.25}});
   // Disjoint intersection: empty.
-  const Box empty = program_bounds(
-      compile_geometry(csg(CsgOp::kIntersection, {a, circle({5, 0}, 1)})));
+  const Box empty =
+      program_bounds(compile_geometry(csg(CsgOp::kIntersection, {a, circle({5, 0}, 1)})));
   EXPECT_TRUE(is_empty(empty));
   // Polygon: its vertices' box.
   expect_box(program_bounds(compile_geometry(Shape{Polygon{{{0, 0}, {2, -1}, {1, 3}}}, "", ""})),
@@ -250,12 +248,15 @@ TEST(ProgramBounds, HalfPlanes) {
   EXPECT_FALSE(is_bounded(alone));
   EXPECT_FALSE(is_empty(alone));
   // Cut off by a bounded operand: that operand's box (a box bound, not the exact cut).
-  const Box cut = program_bounds(compile_geometry(csg(CsgOp::kIntersection, {h, circle({0, 0}, 1)})));
+  const Box cut =
+      program_bounds(compile_geometry(csg(CsgOp::kIntersection, {h, circle({0, 0}, 1)})));
   EXPECT_TRUE(is_bounded(cut));
   expect_box(cut, {{-1, -1}, {1, 1}});
   // Union with a half-plane and a half-plane minus a disk stay unbounded.
-  EXPECT_FALSE(is_bounded(program_bounds(compile_geometry(csg(CsgOp::kUnion, {h, circle({0, 0}, 1)})))));
-  EXPECT_FALSE(is_bounded(program_bounds(compile_geometry(csg(CsgOp::kDifference, {h, circle({0, 0}, 1)})))));
+  EXPECT_FALSE(
+      is_bounded(program_bounds(compile_geometry(csg(CsgOp::kUnion, {h, circle({0, 0}, 1)})))));
+  EXPECT_FALSE(is_bounded(
+      program_bounds(compile_geometry(csg(CsgOp::kDifference, {h, circle({0, 0}, 1)})))));
   // A disk minus a half-plane keeps the disk's box.
   expect_box(program_bounds(compile_geometry(csg(CsgOp::kDifference, {circle({0, 0}, 1), h}))),
              {{-1, -1}, {1, 1}});
@@ -264,8 +265,8 @@ TEST(ProgramBounds, HalfPlanes) {
 TEST(ProgramBounds, RotatedShapes) {
   // [-1,1] x [-0.5,0.5] rotated by 30 degrees: extents |c| hx + |s| hy and |s| hx + |c| hy.
   const double a = kPi / 6, c = std::cos(a), s = std::sin(a);
-  const Box rect = program_bounds(
-      compile_geometry(transformed(rectangle({-1, -0.5}, {1, 0.5}), 2, a, {3, -1})));
+  const Box rect =
+      program_bounds(compile_geometry(transformed(rectangle({-1, -0.5}, {1, 0.5}), 2, a, {3, -1})));
   const double ex = 2 * (c * 1 + s * 0.5), ey = 2 * (s * 1 + c * 0.5);
   expect_box(rect, {{3 - ex, -1 - ey}, {3 + ex, -1 + ey}});
   // Exactly the box of the rotated corners.
@@ -273,7 +274,8 @@ TEST(ProgramBounds, RotatedShapes) {
   const auto& corners = rp.primitives[0].corners;
   ASSERT_EQ(corners.size(), 8u);
   double minx = INFINITY, maxx = -INFINITY;
-  for (size_t i = 0; i < 8; i += 2) minx = std::min(minx, corners[i]), maxx = std::max(maxx, corners[i]);
+  for (size_t i = 0; i < 8; i += 2)
+    minx = std::min(minx, corners[i]), maxx = std::max(maxx, corners[i]);
   EXPECT_NEAR(rect.min.x, minx, 1e-14);
   EXPECT_NEAR(rect.max.x, maxx, 1e-14);
 
@@ -310,24 +312,27 @@ bool contains(const std::vector<Vec2>& pts, Vec2 q, double tol = 1e-12) {
 }
 
 TEST(BoundaryCorners, SquareMinusDiskHasItsFourCorners) {
-  const auto c = corners_of(csg(CsgOp::kDifference, {rectangle({-1, -1}, {1, 1}), circle({0, 0}, 0.5)}));
+  const auto c =
+      corners_of(csg(CsgOp::kDifference, {rectangle({-1, -1}, {1, 1}), circle({0, 0}, 0.5)}));
   ASSERT_EQ(c.size(), 4u);
   for (Vec2 q : {Vec2{-1, -1}, Vec2{1, -1}, Vec2{1, 1}, Vec2{-1, 1}}) EXPECT_TRUE(contains(c, q));
 }
 
 TEST(BoundaryCorners, RectangleInsideAUnionContributesNone) {
-  const auto c = corners_of(csg(CsgOp::kUnion, {rectangle({-1, -1}, {1, 1}),
-                                                rectangle({-0.5, -0.5}, {0.5, 0.5}),
-                                                circle({0, 0}, 0.2)}));
+  const auto c =
+      corners_of(csg(CsgOp::kUnion, {rectangle({-1, -1}, {1, 1}),
+                                     rectangle({-0.5, -0.5}, {0.5, 0.5}), circle({0, 0}, 0.2)}));
   ASSERT_EQ(c.size(), 4u);
   for (Vec2 q : {Vec2{-1, -1}, Vec2{1, -1}, Vec2{1, 1}, Vec2{-1, 1}}) EXPECT_TRUE(contains(c, q));
   // Overlapping rectangles: only the corners outside the other one survive.
-  const auto l = corners_of(csg(CsgOp::kUnion, {rectangle({0, 0}, {2, 1}), rectangle({1, -1}, {3, 0.5})}));
+  const auto l =
+      corners_of(csg(CsgOp::kUnion, {rectangle({0, 0}, {2, 1}), rectangle({1, -1}, {3, 0.5})}));
   EXPECT_EQ(l.size(), 6u);
   EXPECT_FALSE(contains(l, {2, 0}));    // inside the second
   EXPECT_FALSE(contains(l, {1, 0.5}));  // inside the first
   // A rectangular hole: its corners are on the boundary too.
-  const auto h = corners_of(csg(CsgOp::kDifference, {rectangle({-2, -2}, {2, 2}), rectangle({-1, -1}, {1, 1})}));
+  const auto h = corners_of(
+      csg(CsgOp::kDifference, {rectangle({-2, -2}, {2, 2}), rectangle({-1, -1}, {1, 1})}));
   EXPECT_EQ(h.size(), 8u);
 }
 

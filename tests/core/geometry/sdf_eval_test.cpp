@@ -61,7 +61,8 @@ int winding_number(Vec2 p, const std::vector<Vec2>& v) {
 
 double polygon_reference(const std::vector<Vec2>& v, Vec2 p) {
   double d = INFINITY;
-  for (size_t i = 0; i < v.size(); ++i) d = std::min(d, segment_distance(p, v[i], v[(i + 1) % v.size()]));
+  for (size_t i = 0; i < v.size(); ++i)
+    d = std::min(d, segment_distance(p, v[i], v[(i + 1) % v.size()]));
   return winding_number(p, v) != 0 ? -d : d;
 }
 
@@ -106,10 +107,10 @@ double ellipse_reference(double a, double b, Vec2 q) {
 
 TEST(SdfEval, CircleExactDistances) {
   const Shape c{Circle{{1, -2}, 0.5}, "", ""};
-  EXPECT_DOUBLE_EQ(sdf(c, {1, -2}), -0.5);        // centre
-  EXPECT_DOUBLE_EQ(sdf(c, {1.25, -2}), -0.25);    // inside
-  EXPECT_DOUBLE_EQ(sdf(c, {1, -1.5}), 0.0);       // on the boundary
-  EXPECT_DOUBLE_EQ(sdf(c, {4, 2}), 4.5);          // outside: 3-4-5 triangle
+  EXPECT_DOUBLE_EQ(sdf(c, {1, -2}), -0.5);      // centre
+  EXPECT_DOUBLE_EQ(sdf(c, {1.25, -2}), -0.25);  // inside
+  EXPECT_DOUBLE_EQ(sdf(c, {1, -1.5}), 0.0);     // on the boundary
+  EXPECT_DOUBLE_EQ(sdf(c, {4, 2}), 4.5);        // outside: 3-4-5 triangle
   EXPECT_NEAR(sdf(c, {1 - 0.3, -2 - 0.4}), 0.0, 1e-15);
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-3, 3);
@@ -131,8 +132,8 @@ TEST(SdfEval, RectangleInsideSidesAndCorners) {
   EXPECT_DOUBLE_EQ(sdf(r, {0.5, 3}), 2.0);
   EXPECT_DOUBLE_EQ(sdf(r, {-4, 0.5}), 3.0);
   // Outside a corner: the distance to the corner point, not to either side's line.
-  EXPECT_DOUBLE_EQ(sdf(r, {5, 5}), 5.0);     // corner (2, 1): (3, 4)
-  EXPECT_DOUBLE_EQ(sdf(r, {-4, -4}), 5.0);   // corner (-1, 0): (-3, -4)
+  EXPECT_DOUBLE_EQ(sdf(r, {5, 5}), 5.0);    // corner (2, 1): (3, 4)
+  EXPECT_DOUBLE_EQ(sdf(r, {-4, -4}), 5.0);  // corner (-1, 0): (-3, -4)
   EXPECT_DOUBLE_EQ(sdf(r, {2.3, -0.4}), 0.5);
   EXPECT_DOUBLE_EQ(sdf(r, {-1.6, 1.8}), 1.0);
   // On the boundary and at a corner.
@@ -195,8 +196,8 @@ std::vector<Vec2> ellipse_queries(double a, double b, uint64_t seed,
   std::uniform_real_distribution<double> u(-1.6, 1.6), unit(0, 1), ang(0, 2 * kPi);
   for (int i = 0; i < 300; ++i) q.push_back({u(rng) * a, u(rng) * b});
   for (double off : offsets) {
-    for (double s : {-1.5, -1.0, -0.999, -0.9, -0.5, -0.1, 0.0, 0.3, 0.7, 0.95, 0.999, 1.0,
-                     1.001, 1.2, 2.0}) {
+    for (double s :
+         {-1.5, -1.0, -0.999, -0.9, -0.5, -0.1, 0.0, 0.3, 0.7, 0.95, 0.999, 1.0, 1.001, 1.2, 2.0}) {
       q.push_back({s * a, off * b});
       q.push_back({s * a, -off * b});
       q.push_back({off * a, s * b});
@@ -246,17 +247,16 @@ TEST_P(EllipseSdf, MatchesBruteForceClosestPoint) {
 // ellipse at (2.01, 1e-16) gave 0.807 instead of 0.01) and near the centre.
 TEST_P(EllipseSdf, NearTheMajorAxisAndTheCentre) {
   const auto [a, b] = GetParam();
-  const auto queries =
-      ellipse_queries(a, b, static_cast<uint64_t>(a * 1000 + b) + 1,
-                      {1e-17, 1e-16, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-5},
-                      {1e-9, 1e-7, 1e-5, 1e-3});
+  const auto queries = ellipse_queries(a, b, static_cast<uint64_t>(a * 1000 + b) + 1,
+                                       {1e-17, 1e-16, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-5},
+                                       {1e-9, 1e-7, 1e-5, 1e-3});
   EXPECT_EQ(ellipse_mismatches(a, b, queries), 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, EllipseSdf,
-                         ::testing::Values(EllipseCase{1, 1}, EllipseCase{2, 1},
-                                           EllipseCase{1, 2}, EllipseCase{10, 1},
-                                           EllipseCase{1, 10}, EllipseCase{0.3, 0.05}),
+                         ::testing::Values(EllipseCase{1, 1}, EllipseCase{2, 1}, EllipseCase{1, 2},
+                                           EllipseCase{10, 1}, EllipseCase{1, 10},
+                                           EllipseCase{0.3, 0.05}),
                          ellipse_case_name);
 
 // Regression: the same through a rotation, where the local coordinate across the major axis is
@@ -266,8 +266,8 @@ TEST(SdfEval, RotatedEllipseOnItsMajorAxis) {
   const Vec2 centre{0.3, -0.7};
   int failures = 0;
   for (double angle : {0.3, 1.0, kPi / 3, 2.5, -0.8}) {
-    const Program program = compile_geometry(
-        transformed(Shape{Ellipse{{0, 0}, 2, 1}, "", ""}, 1, angle, centre));
+    const Program program =
+        compile_geometry(transformed(Shape{Ellipse{{0, 0}, 2, 1}, "", ""}, 1, angle, centre));
     const Vec2 major{std::cos(angle), std::sin(angle)};
     for (double s : {-2.5, -1.9, -1.0, -0.3, 0.2, 0.5, 1.0, 1.3, 1.7, 1.99, 2.01, 2.5, 3.0}) {
       // Exact on the axis: |s| - 2 from the vertex on; inside the evolute (|s| < (a^2 - b^2) / a
@@ -285,9 +285,9 @@ TEST(SdfEval, RotatedEllipseOnItsMajorAxis) {
 
 TEST(SdfEval, EllipseExactValuesOnItsAxes) {
   const Shape e{Ellipse{{1, 2}, 2, 1}, "", ""};
-  EXPECT_DOUBLE_EQ(sdf(e, {1, 2}), -1.0);        // centre: the nearer vertex (0, +-1)
-  EXPECT_DOUBLE_EQ(sdf(e, {5, 2}), 2.0);         // beyond the major vertex (3, 2)
-  EXPECT_DOUBLE_EQ(sdf(e, {1, 5}), 2.0);         // beyond the minor vertex (1, 3)
+  EXPECT_DOUBLE_EQ(sdf(e, {1, 2}), -1.0);  // centre: the nearer vertex (0, +-1)
+  EXPECT_DOUBLE_EQ(sdf(e, {5, 2}), 2.0);   // beyond the major vertex (3, 2)
+  EXPECT_DOUBLE_EQ(sdf(e, {1, 5}), 2.0);   // beyond the minor vertex (1, 3)
   EXPECT_DOUBLE_EQ(sdf(e, {3, 2}), 0.0);
   EXPECT_DOUBLE_EQ(sdf(e, {1, 1}), 0.0);
 }
@@ -477,8 +477,8 @@ std::vector<Shape> every_primitive() {
           Shape{Ellipse{{0.1, 0.2}, 1.5, 0.4}, "", ""},
           Shape{HalfPlane{{1, 2}, 0.5}, "", ""},
           Shape{Polygon{g3_polygon()}, "", ""},
-          csg(CsgOp::kDifference, {Shape{Rectangle{{-1, -1}, {1, 1}}, "", ""},
-                                   Shape{Circle{{0, 0}, 0.5}, "", ""}})};
+          csg(CsgOp::kDifference,
+              {Shape{Rectangle{{-1, -1}, {1, 1}}, "", ""}, Shape{Circle{{0, 0}, 0.5}, "", ""}})};
 }
 
 TEST(SdfEval, TranslateRotateScaleFoldIntoPrimitives) {
@@ -504,9 +504,8 @@ TEST(SdfEval, NestedTransformsCompose) {
   }
   uint64_t seed = 40;
   for (const Shape& shape : every_primitive()) {
-    const Shape nested =
-        transformed(transformed(shape, inner.scale, inner.angle, inner.offset), outer.scale,
-                    outer.angle, outer.offset);
+    const Shape nested = transformed(transformed(shape, inner.scale, inner.angle, inner.offset),
+                                     outer.scale, outer.angle, outer.offset);
     const Program folded = compile_geometry(nested);
     const Program plain = compile_geometry(shape);
     std::mt19937_64 rng(++seed);
@@ -536,9 +535,9 @@ int owner_at(const Program& program, Vec2 p) {
 
 TEST(SdfEval, OwnerIsThePrimitiveWhoseDistanceWins) {
   // Square minus a disk (G2): the hole owns points near the hole, the square the rest.
-  const Program g2 = compile_geometry(csg(
-      CsgOp::kDifference,
-      {Shape{Rectangle{{-1, -1}, {1, 1}}, "outer", ""}, Shape{Circle{{0, 0}, 0.5}, "hole", ""}}));
+  const Program g2 =
+      compile_geometry(csg(CsgOp::kDifference, {Shape{Rectangle{{-1, -1}, {1, 1}}, "outer", ""},
+                                                Shape{Circle{{0, 0}, 0.5}, "hole", ""}}));
   ASSERT_EQ(g2.primitives.size(), 2u);
   EXPECT_EQ(g2.primitives[owner_at(g2, {0.55, 0})].name, "hole");
   EXPECT_EQ(g2.primitives[owner_at(g2, {0, -0.4})].name, "hole");  // inside the hole
@@ -552,18 +551,18 @@ TEST(SdfEval, OwnerIsThePrimitiveWhoseDistanceWins) {
   }
 
   // Union of three circles: the nearest circle owns points outside; ties go to the first.
-  const Program u = compile_geometry(csg(CsgOp::kUnion, {Shape{Circle{{-2, 0}, 1}, "left", ""},
-                                                         Shape{Circle{{0, 0}, 0.5}, "mid", ""},
-                                                         Shape{Circle{{2, 0}, 1}, "right", ""}}));
+  const Program u = compile_geometry(csg(
+      CsgOp::kUnion, {Shape{Circle{{-2, 0}, 1}, "left", ""}, Shape{Circle{{0, 0}, 0.5}, "mid", ""},
+                      Shape{Circle{{2, 0}, 1}, "right", ""}}));
   EXPECT_EQ(owner_at(u, {-3.5, 0}), 0);
   EXPECT_EQ(owner_at(u, {0, 0.7}), 1);
   EXPECT_EQ(owner_at(u, {2.1, -1.2}), 2);
   EXPECT_EQ(owner_at(u, {0, -3}), 1);  // 2.5 to mid, about 3.6 - 1 to the others
 
   // Intersection: the farthest (max) operand owns.
-  const Program i = compile_geometry(csg(CsgOp::kIntersection,
-                                         {Shape{Circle{{0, 0}, 1}, "disk", ""},
-                                          Shape{HalfPlane{{0, 1}, 0.25}, "cut", ""}}));
+  const Program i =
+      compile_geometry(csg(CsgOp::kIntersection, {Shape{Circle{{0, 0}, 1}, "disk", ""},
+                                                  Shape{HalfPlane{{0, 1}, 0.25}, "cut", ""}}));
   EXPECT_EQ(owner_at(i, {0, 0.2}), 1);
   EXPECT_EQ(owner_at(i, {0.9, -0.3}), 0);
   // Owner indices follow the instruction's primitive index even under transforms.
@@ -590,9 +589,9 @@ TEST(SdfEval, OwnerOfAnInstructionRange) {
   const double d = eval_sdf_range(size.shapes.view(), second.begin, second.end, {0, 0}, &owner);
   EXPECT_DOUBLE_EQ(d, 4.0);
   EXPECT_EQ(owner, 1);
-  EXPECT_DOUBLE_EQ(eval_sdf_range(size.shapes.view(), size.terms[0].begin, size.terms[0].end,
-                                  {0, 0}, &owner),
-                   -1.0);
+  EXPECT_DOUBLE_EQ(
+      eval_sdf_range(size.shapes.view(), size.terms[0].begin, size.terms[0].end, {0, 0}, &owner),
+      -1.0);
   EXPECT_EQ(owner, 0);
 }
 
