@@ -30,6 +30,7 @@ namespace {
 
 struct Options {
   std::string backend = "cpu";
+  std::string force_sum = "gather";
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -39,8 +40,11 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
-               "usage: meshbench [--backend cpu|gpu] [--threads T] [--nodes N] [--repeat R]\n"
+               "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
+               "                 [--nodes N] [--repeat R]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
+               "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
+               "              (default, reproducible) or float atomics (for comparison)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  -o OUT      write each mesh to OUT ({name} = request file stem; .msh .msh22\n"
@@ -60,6 +64,8 @@ Options parse(int argc, char** argv) {
       usage(0);
     else if (a == "--backend")
       o.backend = value();
+    else if (a == "--force-sum")
+      o.force_sum = value();
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -75,6 +81,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.requests.empty()) usage(2);
   if (o.backend != "cpu" && o.backend != "gpu") usage(2);
+  if (o.force_sum != "gather" && o.force_sum != "atomic") usage(2);
 #ifndef MESHD_HAVE_CUDA
   if (o.backend == "gpu") {
     std::fprintf(stderr, "meshbench: this build has no GPU engine (built without nvcc)\n");
@@ -89,6 +96,7 @@ std::unique_ptr<meshd::Engine> make_engine(const Options& o, meshd::ThreadPool& 
 #ifdef MESHD_HAVE_CUDA
   if (o.backend == "gpu") {
     auto gpu = std::make_unique<meshd::GpuEngine>(0);
+    if (o.force_sum == "atomic") gpu->set_force_sum(meshd::GpuEngine::ForceSum::kAtomic);
     gpu->warm_up();
     return gpu;
   }

@@ -64,21 +64,25 @@ __global__ void move_nodes(MoveArgs a) {
     if (i < a.nfix) {
       a.p_next[i] = here;  // fixed nodes stay exactly where they are
     } else {
-      const double scale = *a.scale;
       Vec2 total{0.0, 0.0};
-      for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1]; ++k) {
-        const int32_t e = a.csr_entry[k];
-        const int32_t b = e >> 1;
-        // Only the other end's position is gathered; the bar vector p[a] - p[b] and its length
-        // come out bitwise as measure_bars computed them.
-        const bool second = (e & 1) != 0;
-        const Vec2 other = a.p[second ? a.bars[b].a : a.bars[b].b];
-        const Vec2 v = second ? other - here : here - other;
-        const double len = norm(v);
-        const double h = a.uniform ? 1.0 : a.size[b];
-        const double f = fmax(h * scale - len, 0.0);
-        const Vec2 fv = len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0};
-        total = second ? total - fv : total + fv;
+      if (a.scattered.size > 0) {
+        total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
+      } else {
+        const double scale = *a.scale;
+        for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1]; ++k) {
+          const int32_t e = a.csr_entry[k];
+          const int32_t b = e >> 1;
+          // Only the other end's position is gathered; the bar vector p[a] - p[b] and its
+          // length come out bitwise as measure_bars computed them.
+          const bool second = (e & 1) != 0;
+          const Vec2 other = a.p[second ? a.bars[b].a : a.bars[b].b];
+          const Vec2 v = second ? other - here : here - other;
+          const double len = norm(v);
+          const double h = a.uniform ? 1.0 : a.size[b];
+          const double f = fmax(h * scale - len, 0.0);
+          const Vec2 fv = len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0};
+          total = second ? total - fv : total + fv;
+        }
       }
       const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];
       a.velocity[i] = step;
@@ -94,6 +98,24 @@ __global__ void move_nodes(MoveArgs a) {
   }
   const StepSums total = Reduce(temp).Reduce(measures, StepOp{});
   if (threadIdx.x == 0) a.partial[blockIdx.x] = total;
+}
+
+__global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
+                                   DeviceSpan<const double> size, bool uniform,
+                                   const double* scale, DeviceSpan<double> force) {
+  const int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
+  if (b >= bars.size) return;
+  const Bar bar = bars[b];
+  const Vec2 v = p[bar.a] - p[bar.b];
+  const double len = norm(v);
+  const double h = uniform ? 1.0 : size[b];
+  const double f = fmax(h * *scale - len, 0.0);
+  if (len <= 0.0 || f <= 0.0) return;
+  const Vec2 fv = (f / len) * v;
+  atomicAdd(&force[2 * bar.a], fv.x);
+  atomicAdd(&force[2 * bar.a + 1], fv.y);
+  atomicAdd(&force[2 * bar.b], -fv.x);
+  atomicAdd(&force[2 * bar.b + 1], -fv.y);
 }
 
 __global__ void finish_step(DeviceSpan<const StepSums> partial, StepSums* out) {
@@ -135,6 +157,15 @@ void launch_move_nodes(const MoveArgs& args, cudaStream_t stream) {
   if (args.p.size == 0) return;
   move_nodes<<<blocks_for(args.p.size), kBlock, 0, stream>>>(args);
   MESHD_CHECK_LAUNCH("move_nodes");
+}
+
+void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
+                               DeviceSpan<const double> size, bool uniform, const double* scale,
+                               DeviceSpan<double> force, cudaStream_t stream) {
+  if (bars.size == 0) return;
+  scatter_bar_forces<<<blocks_for(bars.size), kBlock, 0, stream>>>(p, bars, size, uniform, scale,
+                                                                   force);
+  MESHD_CHECK_LAUNCH("scatter_bar_forces");
 }
 
 void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, cudaStream_t stream) {

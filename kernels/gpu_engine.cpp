@@ -122,7 +122,8 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   int32_t round = 0;
   DeviceBuffer<Bar> bars;
-  DeviceBuffer<double> length, size, scale, grid_size;
+  DeviceBuffer<double> length, size, scale, grid_size, scattered;
+  ForceSum force_sum = ForceSum::kGather;
   DeviceBuffer<int32_t> csr_offset, csr_entry, key, key_sorted, value, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
@@ -537,6 +538,14 @@ StepResult GpuEngine::move_points() {
   s.measure_bars(false);
   s.step_partial.resize(gpu::blocks_for(s.n));
   s.step_sums.resize(1);
+  if (s.force_sum == ForceSum::kAtomic) {
+    s.scattered.resize(2 * s.n);
+    MESHD_CUDA_CHECK(cudaMemsetAsync(s.scattered.data(), 0, 2 * s.n * sizeof(double), s.stream));
+    gpu::launch_scatter_bar_forces(s.p.span(), s.bars.span(), s.size.span(), s.uniform,
+                                   s.scale.data(), s.scattered.span(), s.stream);
+  } else {
+    s.scattered.resize(0);
+  }
   gpu::MoveArgs a{};
   a.p = s.p.span();
   a.p_next = s.p_next.span();
@@ -548,6 +557,7 @@ StepResult GpuEngine::move_points() {
   a.bars = s.bars.span();
   a.size = s.size.span();
   a.uniform = s.uniform;
+  a.scattered = s.scattered.span();
   a.scale = s.scale.data();
   a.fd = s.fd;
   a.nfix = s.nfix;
@@ -591,6 +601,8 @@ void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
   for (size_t t = 0; t < all.size(); ++t)
     if (keep[t]) triangles.push_back({all[t].v[0], all[t].v[1], all[t].v[2]});
 }
+
+void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
 
 void GpuEngine::warm_up() {
   Problem disk;

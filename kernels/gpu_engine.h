@@ -38,6 +38,11 @@ class GpuEngine final : public Engine {
   // Meshes a small disk so that modules load and the arena holds a first set of buffers.
   void warm_up();
 
+  // How each node sums its bar forces: a gather through the bar CSR (the default: no atomics,
+  // the same bits every run and on the CPU) or float atomics from each bar (for comparison).
+  enum class ForceSum { kGather, kAtomic };
+  void set_force_sum(ForceSum mode);
+
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;

@@ -69,6 +69,12 @@ void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, S
 void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
                          cudaStream_t stream);
 
+// The alternative to the CSR gather, for comparison: each bar adds its force to its two ends
+// with float atomics (order, and so the last bits, vary from run to run). force: #2N, zeroed.
+void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
+                               DeviceSpan<const double> size, bool uniform, const double* scale,
+                               DeviceSpan<double> force, cudaStream_t stream);
+
 struct MoveArgs {
   DeviceSpan<const Vec2> p;              // #N, positions now
   DeviceSpan<Vec2> p_next;               // #N, positions after the step
@@ -80,6 +86,7 @@ struct MoveArgs {
   DeviceSpan<const Bar> bars;
   DeviceSpan<const double> size;  // #B, h at the midpoints; unused when uniform
   bool uniform;
+  DeviceSpan<const double> scattered;  // #2N summed forces, or empty to gather through the CSR
   const double* scale;
   ProgramView fd;
   int64_t nfix;

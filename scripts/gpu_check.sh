@@ -31,6 +31,10 @@ for step in "${steps[@]}"; do
         repeat=3; [ $n -gt 100000 ] && repeat=1
         $run meshbench --backend gpu --repeat $repeat --nodes $n $req 2>&1 | tee -a "$out/bench_gpu.log"
       done
+      # Per-node force sums: the CSR gather (default) against float atomics.
+      for n in 1000000 4000000; do
+        $run meshbench --backend gpu --force-sum atomic --nodes $n $req 2>&1 | tee -a "$out/bench_atomic.log"
+      done
       for n in 20000 100000 1000000; do
         $run meshbench --backend cpu --nodes $n $req 2>&1 | tee -a "$out/bench_cpu.log"
       done ;;
