@@ -400,9 +400,6 @@ struct GpuEngine::Impl {
     // Kept triangles, for the stats.
     int64_t kept = 0;
     if (m > 0) {
-      flags.resize(m);
-      MESHD_CUDA_CHECK(
-          cudaMemcpyAsync(flags.data(), keep.data(), m, cudaMemcpyDeviceToDevice, stream));
       position.resize(m);
       gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
       kept = last_total(position, keep);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/mesh/msh_physical_names.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
 
@@ -13,14 +14,6 @@ constexpr int kLineType = 1;
 constexpr int kTriangleType = 2;
 constexpr int kSurfaceTag = 1;
 
-// Names go between double quotes and MSH has no escapes, so a quote would end the name early.
-std::string quoted(const std::string& name) {
-  std::string s = name;
-  std::replace_if(
-      s.begin(), s.end(), [](char c) { return c == '"' || c == '\n' || c == '\r'; }, '_');
-  return "\"" + s + "\"";
-}
-
 }  // namespace
 
 void write_msh22(const Mesh& mesh, std::ostream& out) {
@@ -30,14 +23,7 @@ void write_msh22(const Mesh& mesh, std::ostream& out) {
 
   b.text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n");
 
-  b.text("$PhysicalNames\n").number(num_groups + 1).character('\n');
-  b.text("2 ").number(kDomainPhysicalTag).character(' ').text(quoted(kDomainGroupName));
-  b.character('\n');
-  for (int g = 0; g < num_groups; ++g) {
-    b.text("1 ").number(boundary_physical_tag(g)).character(' ');
-    b.text(quoted(mesh.boundary_names[g])).character('\n');
-  }
-  b.text("$EndPhysicalNames\n");
+  write_msh_physical_names(mesh, b);
 
   b.text("$Nodes\n").number(mesh.points.size()).character('\n');
   for (size_t i = 0; i < mesh.points.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/msh_physical_names.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
 
@@ -15,14 +16,6 @@ constexpr int kLineType = 1;      // 2-node line
 constexpr int kTriangleType = 2;  // 3-node triangle
 
 int curve_tag(int group) { return group + 1; }
-
-// Names go between double quotes and MSH has no escapes, so a quote would end the name early.
-std::string quoted(const std::string& name) {
-  std::string s = name;
-  std::replace_if(
-      s.begin(), s.end(), [](char c) { return c == '"' || c == '\n' || c == '\r'; }, '_');
-  return "\"" + s + "\"";
-}
 
 // Writes the values of the sections after $PhysicalNames, in either encoding: ASCII separates
 // values by spaces and ends lines where end_line() is called; binary writes the bytes of each
@@ -106,14 +99,7 @@ void write_msh41(const Mesh& mesh, std::ostream& out, MshEncoding encoding) {
   buffer.text("$EndMeshFormat\n");
 
   // $PhysicalNames is ASCII in both encodings.
-  buffer.text("$PhysicalNames\n").number(num_groups + 1).character('\n');
-  buffer.text("2 ").number(kDomainPhysicalTag).character(' ').text(quoted(kDomainGroupName));
-  buffer.character('\n');
-  for (int g = 0; g < num_groups; ++g) {
-    buffer.text("1 ").number(boundary_physical_tag(g)).character(' ');
-    buffer.text(quoted(mesh.boundary_names[g])).character('\n');
-  }
-  buffer.text("$EndPhysicalNames\n");
+  write_msh_physical_names(mesh, buffer);
 
   // $Entities: no points, one curve per group, one surface bounded by all curves.
   buffer.text("$Entities\n");
