@@ -60,6 +60,13 @@ int gpu_device_count() {
   return count;
 }
 
+int64_t gpu_memory_in_use(int device) {
+  MESHD_CUDA_CHECK(cudaSetDevice(device));
+  size_t free = 0, total = 0;
+  MESHD_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+  return static_cast<int64_t>(total - free);
+}
+
 std::string gpu_device_name(int device) {
   cudaDeviceProp prop{};
   MESHD_CUDA_CHECK(cudaGetDeviceProperties(&prop, device));

@@ -23,6 +23,9 @@ int gpu_device_count();
 // "NVIDIA H100 80GB HBM3" and the like.
 std::string gpu_device_name(int device);
 
+// Bytes of `device`'s memory in use by every process (total less free), for the metrics.
+int64_t gpu_memory_in_use(int device);
+
 // Device-to-device copy bandwidth of `device` in GB/s, counting bytes read plus bytes written
 // (a 512 MiB copy, median of 10 after a warm-up): the ceiling for bandwidth-bound steps.
 double measure_copy_bandwidth(int device);

@@ -361,7 +361,7 @@ Params params(const v1::MeshRequest& request) {
 // ---------------------------------------------------------------------------------------------
 // The estimated node count, last: it needs the whole Problem.
 
-void check_node_count(const Problem& problem, const ConversionLimits& limits) {
+double check_node_count(const Problem& problem, const ConversionLimits& limits) {
   // Throws on its own for an empty domain, a missing bbox or a fixed point outside.
   const double nodes = estimate_node_count(problem);
   const double h0 = problem.h0;
@@ -377,6 +377,53 @@ void check_node_count(const Problem& problem, const ConversionLimits& limits) {
                     ": h0 must be at least about " +
                     approx(h0 * std::sqrt(nodes / static_cast<double>(limits.max_nodes))));
   }
+  return nodes;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Job options: how the service runs the request.
+
+JobOptions job_options(const v1::JobOptions& in, double estimated_nodes,
+                       const ConversionLimits& limits) {
+  JobOptions out;
+  switch (in.backend()) {
+    case v1::JobOptions::BACKEND_AUTO:
+      out.backend = Backend::kAuto;
+      break;
+    case v1::JobOptions::BACKEND_GPU:
+      out.backend = Backend::kGpu;
+      break;
+    case v1::JobOptions::BACKEND_CPU:
+      out.backend = Backend::kCpu;
+      break;
+    default:
+      throw_invalid("options.backend", "must be BACKEND_AUTO, BACKEND_GPU or BACKEND_CPU (got " +
+                                           std::to_string(in.backend()) + ")");
+  }
+  if (in.priority() < -10 || in.priority() > 10) {
+    throw_invalid("options.priority",
+                  "must be in [-10, 10] (got " + std::to_string(in.priority()) + ")");
+  }
+  out.priority = in.priority();
+  out.snapshot_every = in_range(in.snapshot_every(), 0, 100'000, "options.snapshot_every");
+  const auto snapshot_limit = static_cast<uint32_t>(limits.max_snapshot_nodes);
+  out.snapshot_max_nodes =
+      in.snapshot_max_nodes() == 0
+          ? limits.max_snapshot_nodes
+          : in_range(in.snapshot_max_nodes(), 0, snapshot_limit, "options.snapshot_max_nodes");
+  if (out.snapshot_every > 0 && estimated_nodes > static_cast<double>(out.snapshot_max_nodes)) {
+    throw Error(ErrorCode::kResourceExhausted, "options.snapshot_every",
+                "snapshots are limited to meshes of at most " +
+                    std::to_string(out.snapshot_max_nodes) + " nodes and this one has about " +
+                    approx(estimated_nodes) + ": set snapshot_every to 0 or raise h0");
+  }
+  out.timeout_s = in_range(in.timeout_s(), 0, false, 86'400, "options.timeout_s");
+  if (in.label().size() > 128) {
+    throw_invalid("options.label",
+                  "at most 128 bytes (got " + std::to_string(in.label().size()) + ")");
+  }
+  out.label = in.label();
+  return out;
 }
 
 }  // namespace
@@ -412,6 +459,14 @@ Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limit
 
   check_node_count(problem, limits);
   return problem;
+}
+
+JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits) {
+  JobSpec spec;
+  spec.problem = to_problem(request, limits);
+  spec.estimated_nodes = estimate_node_count(spec.problem);
+  spec.options = job_options(request.options(), spec.estimated_nodes, limits);
+  return spec;
 }
 
 }  // namespace meshd

@@ -12,6 +12,7 @@
 
 #include "core/distmesh/problem.h"
 #include "meshd/v1/request.pb.h"
+#include "server/job_spec.h"
 
 namespace meshd {
 
@@ -25,6 +26,7 @@ struct ConversionLimits {
   double max_size_ratio = 1000;       // bound on (largest h) / (smallest h) of the size field
   int max_size_terms = 100;           // terms of the size field
   int max_fixed_points = 100'000;     // entries of fixed_points
+  int max_snapshot_nodes = 200'000;   // largest mesh whose snapshots may be streamed
 };
 
 // Validates `request` against the proto's documented ranges and `limits`, and converts it.
@@ -36,5 +38,9 @@ struct ConversionLimits {
 //   request  the API message, as received or parsed from text
 //   limits   the caller's limits
 Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits = {});
+
+// to_problem, then the service's options (options.*) with their ranges. Snapshots of a request
+// estimated above the snapshot limit are RESOURCE_EXHAUSTED naming "options.snapshot_every".
+JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits = {});
 
 }  // namespace meshd

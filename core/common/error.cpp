@@ -14,6 +14,8 @@ const char* error_code_name(ErrorCode code) {
       return "DEADLINE_EXCEEDED";
     case ErrorCode::kUnavailable:
       return "UNAVAILABLE";
+    case ErrorCode::kFailedPrecondition:
+      return "FAILED_PRECONDITION";
     case ErrorCode::kNotFound:
       return "NOT_FOUND";
     case ErrorCode::kInternal:

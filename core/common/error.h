@@ -15,6 +15,7 @@ enum class ErrorCode {
   kCancelled,          // the job's cancellation flag was set
   kDeadlineExceeded,   // the job ran out of time
   kUnavailable,        // no capacity now (queue full, shutting down)
+  kFailedPrecondition, // the server cannot run it as asked (a GPU job on a server without one)
   kNotFound,           // no such job
   kInternal,           // our own fault
 };

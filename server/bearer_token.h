@@ -1,0 +1,27 @@
+// The optional shared-secret check: every meshd.v1 call must carry the metadata
+// "authorization: Bearer <token>". The health service stays open for probes.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <string>
+
+namespace meshd {
+
+class BearerToken {
+ public:
+  // An empty token turns the check off.
+  explicit BearerToken(std::string token) : token_(std::move(token)) {}
+
+  // OK, or UNAUTHENTICATED saying what was wrong (never echoing a token).
+  grpc::Status check(const grpc::CallbackServerContext& context) const;
+
+ private:
+  std::string token_;
+};
+
+// Reads a token file: its first line, without surrounding white space. Throws
+// Error(kInvalidArgument) naming `flag` when the file cannot be read or the token is empty.
+std::string read_token_file(const std::string& path, const std::string& flag);
+
+}  // namespace meshd

@@ -1,0 +1,291 @@
+#include "server/job.h"
+
+#include <utility>
+
+namespace meshd {
+
+const char* job_state_name(JobState state) {
+  switch (state) {
+    case JobState::kQueued:
+      return "queued";
+    case JobState::kRunning:
+      return "running";
+    case JobState::kSucceeded:
+      return "succeeded";
+    case JobState::kFailed:
+      return "failed";
+    case JobState::kCancelled:
+      return "cancelled";
+  }
+  return "unknown";
+}
+
+namespace {
+
+double seconds(Job::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+double unix_now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+bool final_state(JobState s) {
+  return s == JobState::kSucceeded || s == JobState::kFailed || s == JobState::kCancelled;
+}
+
+v1::JobState to_proto(JobState s) {
+  switch (s) {
+    case JobState::kQueued:
+      return v1::JOB_STATE_QUEUED;
+    case JobState::kRunning:
+      return v1::JOB_STATE_RUNNING;
+    case JobState::kSucceeded:
+      return v1::JOB_STATE_SUCCEEDED;
+    case JobState::kFailed:
+      return v1::JOB_STATE_FAILED;
+    case JobState::kCancelled:
+      return v1::JOB_STATE_CANCELLED;
+  }
+  return v1::JOB_STATE_UNSPECIFIED;
+}
+
+}  // namespace
+
+Job::Job(std::string id, JobSpec spec, Backend worker, Clock::time_point deadline)
+    : id_(std::move(id)),
+      spec_(std::move(spec)),
+      worker_(worker),
+      deadline_(deadline),
+      submitted_(Clock::now()),
+      submitted_unix_s_(unix_now_s()) {}
+
+void Job::request_stop(const grpc::Status& status) {
+  {
+    std::lock_guard lock(mutex_);
+    if (final_state(state_) || stop_status_) return;
+    stop_status_ = status;
+  }
+  cancel_.store(true, std::memory_order_relaxed);
+}
+
+grpc::Status Job::stop_status() const {
+  std::lock_guard lock(mutex_);
+  return stop_status_.value_or(grpc::Status(grpc::StatusCode::CANCELLED, "job cancelled"));
+}
+
+void Job::set_queue_position(int position) {
+  {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kQueued || (queued_seq_ > 0 && position == queue_position_)) return;
+    queue_position_ = position;
+    ++queued_seq_;
+  }
+  wake_subscribers();
+}
+
+bool Job::start(const v1::Started& started) {
+  {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kQueued || stop_status_) return false;
+    state_ = JobState::kRunning;
+    started_ = started;
+    started_at_ = Clock::now();
+    started_->set_queue_wait_s(seconds(started_at_ - submitted_));
+  }
+  wake_subscribers();
+  return true;
+}
+
+void Job::publish_progress(const v1::Progress& progress) {
+  {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kRunning) return;
+    progress_ = progress;
+    ++progress_seq_;
+  }
+  wake_subscribers();
+}
+
+void Job::publish_snapshot(int iteration, const std::vector<Vec2>& points,
+                           const std::vector<std::array<int32_t, 3>>* triangles) {
+  {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kRunning) return;
+    snapshot_iteration_ = iteration;
+    snapshot_points_.resize(2 * points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+      snapshot_points_[2 * i] = points[i].x;
+      snapshot_points_[2 * i + 1] = points[i].y;
+    }
+    if (triangles != nullptr) {
+      snapshot_triangles_.resize(3 * triangles->size());
+      for (size_t i = 0; i < triangles->size(); ++i) {
+        for (int k = 0; k < 3; ++k) snapshot_triangles_[3 * i + k] = (*triangles)[i][k];
+      }
+      ++topology_seq_;
+    }
+    ++snapshot_seq_;
+  }
+  wake_subscribers();
+}
+
+void Job::succeed(EncodedResult result) {
+  {
+    std::lock_guard lock(mutex_);
+    if (final_state(state_)) return;
+    result_ = std::move(result);
+    if (started_) {
+      result_->done.mutable_stats()->set_queue_wait_s(started_->queue_wait_s());
+      result_->done.set_backend(started_->backend());
+      result_->done.set_device(started_->device());
+    }
+    state_ = JobState::kSucceeded;
+    finished_at_ = Clock::now();
+    // Snapshots are for watching a job settle; nobody needs them once the result is here.
+    std::vector<double>().swap(snapshot_points_);
+    std::vector<int32_t>().swap(snapshot_triangles_);
+  }
+  wake_subscribers();
+}
+
+void Job::finish(const grpc::Status& status) {
+  {
+    std::lock_guard lock(mutex_);
+    if (final_state(state_)) return;
+    const auto code = status.error_code();
+    state_ = code == grpc::StatusCode::CANCELLED || code == grpc::StatusCode::DEADLINE_EXCEEDED
+                 ? JobState::kCancelled
+                 : JobState::kFailed;
+    final_status_ = status;
+    finished_at_ = Clock::now();
+    std::vector<double>().swap(snapshot_points_);
+    std::vector<int32_t>().swap(snapshot_triangles_);
+  }
+  cancel_.store(true, std::memory_order_relaxed);
+  wake_subscribers();
+}
+
+JobState Job::state() const {
+  std::lock_guard lock(mutex_);
+  return state_;
+}
+
+bool Job::is_final() const { return final_state(state()); }
+
+Job::Clock::time_point Job::finished_at() const {
+  std::lock_guard lock(mutex_);
+  return finished_at_;
+}
+
+v1::JobInfo Job::info() const {
+  v1::JobInfo out;
+  out.set_job_id(id_);
+  out.set_label(spec_.options.label);
+  out.set_priority(spec_.options.priority);
+  out.set_submitted_at(submitted_unix_s_);
+  std::lock_guard lock(mutex_);
+  out.set_state(to_proto(state_));
+  if (state_ == JobState::kQueued) out.set_queue_position(queue_position_);
+  if (started_) {
+    out.set_backend(started_->backend());
+    out.set_device(started_->device());
+    out.set_queue_wait_s(started_->queue_wait_s());
+    const auto end = final_state(state_) ? finished_at_ : Clock::now();
+    out.set_run_s(seconds(end - started_at_));
+  }
+  out.set_iteration(progress_.iteration());
+  out.set_nodes(progress_.nodes());
+  if (state_ == JobState::kSucceeded) {
+    *out.mutable_done() = result_->done;
+    out.set_nodes(result_->done.nodes());
+    out.set_iteration(result_->done.stats().iterations());
+  }
+  if (state_ == JobState::kFailed || state_ == JobState::kCancelled) {
+    out.set_error_code(static_cast<int32_t>(final_status_.error_code()));
+    out.set_error_message(final_status_.error_message());
+  }
+  return out;
+}
+
+void Job::subscribe(const std::shared_ptr<JobSubscriber>& subscriber) {
+  {
+    std::lock_guard lock(mutex_);
+    std::erase_if(subscribers_, [](const auto& s) { return s.expired(); });
+    subscribers_.push_back(subscriber);
+  }
+  subscriber->wake();
+}
+
+void Job::wake_subscribers() {
+  std::vector<std::shared_ptr<JobSubscriber>> live;
+  {
+    std::lock_guard lock(mutex_);
+    live.reserve(subscribers_.size());
+    for (const auto& s : subscribers_) {
+      if (auto p = s.lock()) live.push_back(std::move(p));
+    }
+  }
+  for (const auto& s : live) s->wake();
+}
+
+NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Status& status) const {
+  event.Clear();
+  event.set_job_id(id_);
+  std::lock_guard lock(mutex_);
+  if (!cursor.started_sent) {
+    if (state_ == JobState::kQueued) {
+      if (queued_seq_ == cursor.queued_seq) return NextEvent::kNone;
+      cursor.queued_seq = queued_seq_;
+      event.mutable_queued()->set_position(queue_position_);
+      return NextEvent::kEvent;
+    }
+    if (started_) {
+      cursor.started_sent = true;
+      *event.mutable_started() = *started_;
+      return NextEvent::kEvent;
+    }
+  }
+  if (state_ == JobState::kRunning) {
+    if (progress_seq_ != cursor.progress_seq) {
+      cursor.progress_seq = progress_seq_;
+      *event.mutable_progress() = progress_;
+      return NextEvent::kEvent;
+    }
+    if (snapshot_seq_ != cursor.snapshot_seq) {
+      cursor.snapshot_seq = snapshot_seq_;
+      v1::Snapshot& s = *event.mutable_snapshot();
+      s.set_iteration(snapshot_iteration_);
+      s.mutable_points()->Add(snapshot_points_.begin(), snapshot_points_.end());
+      if (cursor.topology_seq != topology_seq_) {
+        cursor.topology_seq = topology_seq_;
+        s.set_has_triangles(true);
+        s.mutable_triangles()->Add(snapshot_triangles_.begin(), snapshot_triangles_.end());
+      }
+      return NextEvent::kEvent;
+    }
+    return NextEvent::kNone;
+  }
+  if (state_ == JobState::kSucceeded) {
+    const auto& chunks = result_->chunks;
+    if (cursor.next_chunk < chunks.size()) {
+      const size_t i = cursor.next_chunk++;
+      v1::ResultChunk& c = *event.mutable_result_chunk();
+      c.set_index(static_cast<uint32_t>(i));
+      c.set_count(static_cast<uint32_t>(chunks.size()));
+      c.set_offset(i * result_->chunk_bytes);
+      c.set_total_bytes(result_->total_bytes);
+      c.set_data(chunks[i]);
+      return NextEvent::kEvent;
+    }
+    if (!cursor.done_sent) {
+      cursor.done_sent = true;
+      *event.mutable_done() = result_->done;
+      return NextEvent::kEvent;
+    }
+    status = grpc::Status::OK;
+    return NextEvent::kFinished;
+  }
+  status = final_status_;
+  return NextEvent::kFinished;
+}
+
+}  // namespace meshd

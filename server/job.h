@@ -1,0 +1,136 @@
+// One mesh job as the service holds it, and what its event streams read.
+//
+// A job moves queued → running → succeeded | failed | cancelled, or from queued straight to
+// failed or cancelled, and never leaves a final state. Its events are kept here and only here:
+// the latest queue position, the start, the latest progress and the latest snapshot (a slow
+// reader gets the newest, never a backlog: memory per job is bounded by one snapshot), and the
+// whole encoded result (chunks are never dropped; the result is kept for retention anyway).
+// Each change bumps a sequence number and wakes the subscribers, which pull with next_event at
+// their own pace through an EventCursor of their own. Thread-safe: one mutex guards the state,
+// and subscribers are woken with it released.
+#pragma once
+
+#include <grpcpp/support/status.h>
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/common/vec2.h"
+#include "meshd/v1/service.pb.h"
+#include "server/job_spec.h"
+#include "server/result_encoding.h"
+
+namespace meshd {
+
+enum class JobState { kQueued, kRunning, kSucceeded, kFailed, kCancelled };
+
+const char* job_state_name(JobState state);
+
+// A stream that reads a job's events. wake() is called whenever something new may be there,
+// from any thread, never with the job's mutex held.
+class JobSubscriber {
+ public:
+  virtual ~JobSubscriber() = default;
+  virtual void wake() = 0;
+};
+
+// What one reader has already received.
+struct EventCursor {
+  uint64_t queued_seq = 0;
+  bool started_sent = false;
+  uint64_t progress_seq = 0;
+  uint64_t snapshot_seq = 0;
+  uint64_t topology_seq = 0;  // of the triangles this reader holds
+  size_t next_chunk = 0;
+  bool done_sent = false;
+};
+
+enum class NextEvent { kNone, kEvent, kFinished };
+
+class Job {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // `worker` is the kind of worker that runs it (kGpu or kCpu, never kAuto); `deadline` is
+  // Clock::time_point::max() when none.
+  Job(std::string id, JobSpec spec, Backend worker, Clock::time_point deadline);
+
+  const std::string& id() const { return id_; }
+  const JobSpec& spec() const { return spec_; }
+  Backend worker() const { return worker_; }
+  Clock::time_point deadline() const { return deadline_; }
+  Clock::time_point submitted() const { return submitted_; }
+
+  // ---- Control -------------------------------------------------------------------------------
+  // The flag the DistMesh loop polls between iterations.
+  const std::atomic<bool>* cancel_flag() const { return &cancel_; }
+  // Asks the job to stop with `status` (CANCELLED or DEADLINE_EXCEEDED). A running job stops
+  // within one iteration and its worker finishes it with this status; a queued job is finished
+  // by whoever takes it out of the queue. The first reason wins.
+  void request_stop(const grpc::Status& status);
+  grpc::Status stop_status() const;
+
+  // ---- Written by the queue and the worker -----------------------------------------------------
+  void set_queue_position(int position);
+  // Marks the job running; false when it was stopped while queued (then it must not run).
+  bool start(const v1::Started& started);
+  void publish_progress(const v1::Progress& progress);
+  // points: #N by 2; triangles: #M by 3, or null when unchanged since the last snapshot.
+  void publish_snapshot(int iteration, const std::vector<Vec2>& points,
+                        const std::vector<std::array<int32_t, 3>>* triangles);
+  void succeed(EncodedResult result);
+  // Finishes with a non-OK status: CANCELLED and DEADLINE_EXCEEDED count as cancelled, any
+  // other code as failed. No effect on a job already final.
+  void finish(const grpc::Status& status);
+
+  // ---- Read by the service -------------------------------------------------------------------
+  JobState state() const;
+  bool is_final() const;
+  Clock::time_point finished_at() const;
+  v1::JobInfo info() const;
+
+  void subscribe(const std::shared_ptr<JobSubscriber>& subscriber);
+  // The next event for a reader at `cursor`, which it advances. kFinished sets `status`: the
+  // stream ends there (OK after done).
+  NextEvent next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Status& status) const;
+
+ private:
+  void wake_subscribers();
+
+  const std::string id_;
+  const JobSpec spec_;
+  const Backend worker_;
+  const Clock::time_point deadline_;
+  const Clock::time_point submitted_;
+  const double submitted_unix_s_;
+  std::atomic<bool> cancel_{false};
+
+  mutable std::mutex mutex_;
+  JobState state_ = JobState::kQueued;
+  std::optional<grpc::Status> stop_status_;
+  grpc::Status final_status_;
+  Clock::time_point started_at_{}, finished_at_{};
+
+  int queue_position_ = 0;
+  uint64_t queued_seq_ = 0;
+  std::optional<v1::Started> started_;
+  v1::Progress progress_;
+  uint64_t progress_seq_ = 0;
+  int snapshot_iteration_ = 0;
+  std::vector<double> snapshot_points_;  // x0, y0, x1, ...
+  std::vector<int32_t> snapshot_triangles_;
+  uint64_t snapshot_seq_ = 0;
+  uint64_t topology_seq_ = 0;
+  std::optional<EncodedResult> result_;
+
+  std::vector<std::weak_ptr<JobSubscriber>> subscribers_;
+};
+
+}  // namespace meshd

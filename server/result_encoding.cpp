@@ -1,0 +1,97 @@
+#include "server/result_encoding.h"
+
+#include <openssl/evp.h>
+
+#include <algorithm>
+
+#include "core/common/error.h"
+
+namespace meshd {
+
+v1::MeshData to_mesh_data(const Mesh& mesh) {
+  v1::MeshData out;
+  out.mutable_points()->Reserve(static_cast<int>(2 * mesh.points.size()));
+  for (const Vec2& p : mesh.points) {
+    out.add_points(p.x);
+    out.add_points(p.y);
+  }
+  out.mutable_triangles()->Reserve(static_cast<int>(3 * mesh.triangles.size()));
+  for (const auto& t : mesh.triangles) {
+    for (int32_t v : t) out.add_triangles(v);
+  }
+  for (const auto& e : mesh.boundary_edges) {
+    out.add_boundary_edges(e[0]);
+    out.add_boundary_edges(e[1]);
+  }
+  for (int32_t tag : mesh.boundary_tags) out.add_boundary_tags(tag);
+  for (const auto& name : mesh.boundary_names) out.add_boundary_names(name);
+  return out;
+}
+
+std::string sha256_hex(const std::string& bytes) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1) {
+    throw Error(ErrorCode::kInternal, "", "SHA-256 of the result failed");
+  }
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  hex.reserve(2 * length);
+  for (unsigned int i = 0; i < length; ++i) {
+    hex.push_back(kHex[digest[i] >> 4]);
+    hex.push_back(kHex[digest[i] & 15]);
+  }
+  return hex;
+}
+
+namespace {
+
+v1::RunStats to_proto(const RunStats& s) {
+  v1::RunStats out;
+  out.set_iterations(s.iterations);
+  out.set_converged(s.converged);
+  out.set_levels(s.levels);
+  out.set_retriangulations(s.retriangulations);
+  out.set_full_triangulations(s.full_triangulations);
+  out.set_flips(s.flips);
+  out.set_repair_fallbacks(s.repair_fallbacks);
+  out.set_density_removed(s.density_removed);
+  out.set_cleanup_removed(s.cleanup_removed);
+  out.set_t_triangulation(s.t_triangulation);
+  out.set_t_forces(s.t_forces);
+  out.set_t_cleanup(s.t_cleanup);
+  out.set_t_mesh(s.t_total);
+  return out;
+}
+
+v1::Quality to_proto(const QualityStats& q) {
+  v1::Quality out;
+  out.set_q_min(q.q_min);
+  out.set_q_mean(q.q_mean);
+  out.set_min_angle_deg(q.min_angle_deg);
+  for (int64_t count : q.histogram) out.add_histogram(count);
+  return out;
+}
+
+}  // namespace
+
+EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes) {
+  const std::string payload = to_mesh_data(result.mesh).SerializeAsString();
+  EncodedResult out;
+  out.total_bytes = payload.size();
+  out.chunk_bytes = chunk_bytes;
+  for (size_t offset = 0; offset < payload.size() || out.chunks.empty(); offset += chunk_bytes) {
+    out.chunks.push_back(payload.substr(offset, std::min(chunk_bytes, payload.size() - offset)));
+  }
+  v1::Done& done = out.done;
+  done.set_nodes(static_cast<int64_t>(result.mesh.points.size()));
+  done.set_triangles(static_cast<int64_t>(result.mesh.triangles.size()));
+  done.set_boundary_edges(static_cast<int64_t>(result.mesh.boundary_edges.size()));
+  done.set_result_bytes(out.total_bytes);
+  done.set_result_sha256(sha256_hex(payload));
+  *done.mutable_stats() = to_proto(result.stats);
+  *done.mutable_quality() = to_proto(result.quality);
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,144 @@
+#include "server/worker.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <utility>
+
+#include "core/common/error.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/distmesh.h"
+#include "server/job_observer.h"
+#include "server/request_conversion.h"
+#include "server/status_mapping.h"
+
+namespace meshd {
+
+namespace {
+
+double seconds_since(Job::Clock::time_point t) {
+  return std::chrono::duration<double>(Job::Clock::now() - t).count();
+}
+
+v1::JobOptions::Backend to_proto(Backend b) {
+  return b == Backend::kGpu ? v1::JobOptions::BACKEND_GPU : v1::JobOptions::BACKEND_CPU;
+}
+
+// A unit disk at about 400 nodes: every step of the loop once, in well under a second.
+Problem warm_up_problem() {
+  v1::MeshRequest request;
+  request.mutable_geometry()->mutable_circle()->set_radius(1.0);
+  request.set_h0(0.1);
+  return to_problem(request);
+}
+
+}  // namespace
+
+Worker::Worker(std::string name, Backend kind, WorkerEngineFactory factory, JobQueue& queue,
+               Metrics& metrics, Hooks hooks)
+    : name_(std::move(name)),
+      kind_(kind),
+      factory_(std::move(factory)),
+      queue_(queue),
+      metrics_(metrics),
+      hooks_(std::move(hooks)) {}
+
+Worker::~Worker() { join(); }
+
+void Worker::warm_up() {
+  const auto t = Job::Clock::now();
+  engine_ = factory_();
+  device_ = engine_->device();
+  const MeshResult r =
+      generate_mesh(compile_problem(warm_up_problem()), engine_->engine(), nullptr, nullptr);
+  spdlog::info("worker {} warm on {}: {} nodes in {:.3f} s", name_, device_, r.mesh.points.size(),
+               seconds_since(t));
+}
+
+void Worker::start() {
+  thread_ = std::thread([this] { loop(); });
+}
+
+void Worker::join() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void Worker::loop() {
+  while (std::shared_ptr<Job> job = queue_.pop(kind_)) {
+    metrics_.set_queue_depth(static_cast<int64_t>(queue_.size()));
+    run(*job);
+    if (hooks_.finished) hooks_.finished(*job);
+    if (!engine_ && !rebuild_engine()) {
+      retired_ = true;
+      if (hooks_.retired) hooks_.retired(*this);
+      return;
+    }
+  }
+}
+
+bool Worker::rebuild_engine() {
+  try {
+    engine_ = factory_();
+    spdlog::warn("worker {}: engine rebuilt on {}", name_, engine_->device());
+    return true;
+  } catch (const std::exception& e) {
+    spdlog::error("worker {}: cannot rebuild its engine, retiring: {}", name_, e.what());
+    return false;
+  }
+}
+
+void Worker::run(Job& job) {
+  if (Job::Clock::now() > job.deadline()) {
+    job.finish(grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
+                            "the job's deadline passed while it was queued"));
+    return;
+  }
+  v1::Started started;
+  started.set_backend(to_proto(kind_));
+  started.set_device(device_);
+  if (!job.start(started)) {
+    job.finish(job.stop_status());
+    return;
+  }
+  const auto t = Job::Clock::now();
+  metrics_.observe_queue_wait(kind_, std::chrono::duration<double>(t - job.submitted()).count());
+  spdlog::info("job {} started on {} ({}), about {:.0f} nodes", job.id(), name_, device_,
+               job.spec().estimated_nodes);
+  try {
+    JobObserver observer(job);
+    const MeshResult result = generate_mesh(compile_problem(job.spec().problem), engine_->engine(),
+                                            &observer, job.cancel_flag());
+    const double t_mesh = seconds_since(t);
+    EncodedResult encoded = encode_result(result);
+    spdlog::info(
+        "job {} succeeded on {}: {} nodes, {} triangles, {} iterations{}, q_min {:.3f}, mesh "
+        "{:.3f} s, encode {:.3f} s, {} bytes",
+        job.id(), name_, result.mesh.points.size(), result.mesh.triangles.size(),
+        result.stats.iterations, result.stats.converged ? "" : " (max_iterations, not converged)",
+        result.quality.q_min, t_mesh, seconds_since(t) - t_mesh, encoded.total_bytes);
+    job.succeed(std::move(encoded));
+  } catch (const Error& e) {
+    const grpc::Status status =
+        e.code() == ErrorCode::kCancelled ? job.stop_status() : to_grpc_status(e);
+    spdlog::info("job {} ended on {}: {} {}", job.id(), name_, error_code_name(e.code()),
+                 status.error_message());
+    job.finish(status);
+    // A device that failed may be left in any state: start the next job on a fresh engine.
+    if (e.code() == ErrorCode::kInternal) engine_.reset();
+  } catch (...) {
+    const grpc::Status status = to_grpc_status(std::current_exception());
+    spdlog::error("job {} failed on {}: {}", job.id(), name_, status.error_message());
+    job.finish(status);
+    engine_.reset();
+  }
+  metrics_.observe_run(kind_, seconds_since(t));
+  if (engine_ && engine_->device_index() >= 0) {
+    try {
+      metrics_.set_device_memory(engine_->device_index(), engine_->device_memory_bytes());
+    } catch (const std::exception&) {
+      // The metric is best effort; the next job finds out whether the device still works.
+    }
+  }
+}
+
+}  // namespace meshd

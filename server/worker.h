@@ -1,0 +1,64 @@
+// A worker: one thread that takes the jobs of its kind (GPU or CPU) from the queue and runs each
+// on its own engine, so that a GPU worker owns its device, stream and arena between jobs.
+//
+// A job that fails fails alone: the worker finishes it with its status and takes the next one.
+// When an engine throws anything but a request error (a CUDA fault, say), the worker rebuilds
+// it before the next job; when it cannot, the worker retires and says so through its hooks.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "server/job_queue.h"
+#include "server/metrics.h"
+#include "server/worker_engine.h"
+
+namespace meshd {
+
+class Worker {
+ public:
+  struct Hooks {
+    std::function<void(Job&)> finished;    // after the job reached its final state
+    std::function<void(Worker&)> retired;  // the worker stopped for good (its engine is gone)
+  };
+
+  Worker(std::string name, Backend kind, WorkerEngineFactory factory, JobQueue& queue,
+         Metrics& metrics, Hooks hooks);
+  ~Worker();
+  Worker(const Worker&) = delete;
+  Worker& operator=(const Worker&) = delete;
+
+  // Builds the engine and meshes a small disk on it, on the caller's thread. Throws when the
+  // engine cannot be built or the mesh fails.
+  void warm_up();
+  // Starts taking jobs (after warm_up). The thread ends when the queue closes.
+  void start();
+  void join();
+
+  const std::string& name() const { return name_; }
+  Backend kind() const { return kind_; }
+  // Where its jobs run ("cpu (2 threads)"); empty before warm_up.
+  const std::string& device() const { return device_; }
+  bool retired() const { return retired_.load(); }
+
+ private:
+  void loop();
+  void run(Job& job);
+  bool rebuild_engine();
+
+  const std::string name_;
+  const Backend kind_;
+  const WorkerEngineFactory factory_;
+  JobQueue& queue_;
+  Metrics& metrics_;
+  const Hooks hooks_;
+  std::unique_ptr<WorkerEngine> engine_;
+  std::string device_;
+  std::atomic<bool> retired_{false};
+  std::thread thread_;
+};
+
+}  // namespace meshd

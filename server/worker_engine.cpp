@@ -1,0 +1,71 @@
+#include "server/worker_engine.h"
+
+#include <string>
+
+#include "core/common/error.h"
+#include "core/common/thread_pool.h"
+#include "core/distmesh/cpu_engine.h"
+#ifdef MESHD_HAVE_CUDA
+#include "kernels/gpu_engine.h"
+#endif
+
+namespace meshd {
+
+namespace {
+
+class CpuWorkerEngine final : public WorkerEngine {
+ public:
+  explicit CpuWorkerEngine(unsigned threads) : pool_(threads), engine_(pool_) {}
+  Engine& engine() override { return engine_; }
+  std::string device() const override {
+    return "cpu (" + std::to_string(pool_.size()) + " threads)";
+  }
+
+ private:
+  ThreadPool pool_;
+  CpuEngine engine_;
+};
+
+#ifdef MESHD_HAVE_CUDA
+class GpuWorkerEngine final : public WorkerEngine {
+ public:
+  explicit GpuWorkerEngine(int device)
+      : engine_(device),
+        name_(gpu_device_name(device) + " (device " + std::to_string(device) + ")") {
+    engine_.warm_up();
+  }
+  Engine& engine() override { return engine_; }
+  std::string device() const override { return name_; }
+  int device_index() const override { return engine_.device(); }
+  int64_t device_memory_bytes() const override { return gpu_memory_in_use(engine_.device()); }
+
+ private:
+  GpuEngine engine_;
+  std::string name_;
+};
+#endif
+
+}  // namespace
+
+WorkerEngineFactory cpu_engine_factory(unsigned threads) {
+  return [threads] { return std::make_unique<CpuWorkerEngine>(threads); };
+}
+
+int usable_gpu_count() {
+#ifdef MESHD_HAVE_CUDA
+  return gpu_device_count();
+#else
+  return 0;
+#endif
+}
+
+WorkerEngineFactory gpu_engine_factory(int device) {
+#ifdef MESHD_HAVE_CUDA
+  return [device] { return std::make_unique<GpuWorkerEngine>(device); };
+#else
+  (void)device;
+  throw Error(ErrorCode::kUnavailable, "backend", "this build of meshd has no GPU engine");
+#endif
+}
+
+}  // namespace meshd

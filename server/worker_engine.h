@@ -1,0 +1,38 @@
+// What a worker runs its jobs on: an engine, and the words that say where it runs. The factory
+// builds a fresh one, so that a worker can rebuild an engine that failed; tests inject their own.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/distmesh/engine.h"
+
+namespace meshd {
+
+class WorkerEngine {
+ public:
+  virtual ~WorkerEngine() = default;
+  virtual Engine& engine() = 0;
+  // "cpu (8 threads)", "NVIDIA H100 80GB HBM3 (device 0)".
+  virtual std::string device() const = 0;
+  // CUDA device ordinal, -1 for the CPU.
+  virtual int device_index() const { return -1; }
+  // Device memory in use, for the metrics; 0 for the CPU.
+  virtual int64_t device_memory_bytes() const { return 0; }
+};
+
+using WorkerEngineFactory = std::function<std::unique_ptr<WorkerEngine>()>;
+
+// The CPU engine on a pool of `threads` threads (0: all cores).
+WorkerEngineFactory cpu_engine_factory(unsigned threads);
+
+// CUDA devices this build can use: 0 when built without CUDA or when none is visible.
+int usable_gpu_count();
+
+// The GPU engine on `device`; its context is created and its modules loaded when built. Throws
+// Error(kUnavailable) when this build has no GPU engine.
+WorkerEngineFactory gpu_engine_factory(int device);
+
+}  // namespace meshd
