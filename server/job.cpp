@@ -232,12 +232,14 @@ NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Statu
   event.set_job_id(id_);
   std::lock_guard lock(mutex_);
   if (!cursor.started_sent) {
-    if (state_ == JobState::kQueued) {
-      if (queued_seq_ == cursor.queued_seq) return NextEvent::kNone;
+    // Every stream opens with queued, even when a worker took the job at once.
+    if (queued_seq_ != cursor.queued_seq &&
+        (state_ == JobState::kQueued || cursor.queued_seq == 0)) {
       cursor.queued_seq = queued_seq_;
       event.mutable_queued()->set_position(queue_position_);
       return NextEvent::kEvent;
     }
+    if (state_ == JobState::kQueued) return NextEvent::kNone;
     if (started_) {
       cursor.started_sent = true;
       *event.mutable_started() = *started_;

@@ -91,9 +91,13 @@ std::shared_ptr<Job> JobManager::submit(const v1::MeshRequest& request,
   }
   ++live_;
   metrics_.add_live_jobs(1);
+  spdlog::info("job {} queued for {}: about {:.0f} nodes, priority {}{}", job->id(),
+               backend_name(worker), job->spec().estimated_nodes, job->spec().options.priority,
+               job->spec().options.label.empty() ? "" : ", label " + job->spec().options.label);
   try {
     queue_.push(job);
   } catch (const Error& e) {
+    spdlog::info("job {} refused: {}", job->id(), e.what());
     --live_;
     metrics_.add_live_jobs(-1);
     std::lock_guard lock(mutex_);
@@ -101,9 +105,6 @@ std::shared_ptr<Job> JobManager::submit(const v1::MeshRequest& request,
     throw;
   }
   metrics_.set_queue_depth(static_cast<int64_t>(queue_.size()));
-  spdlog::info("job {} queued for {}: about {:.0f} nodes, priority {}{}", job->id(),
-               backend_name(worker), job->spec().estimated_nodes, job->spec().options.priority,
-               job->spec().options.label.empty() ? "" : ", label " + job->spec().options.label);
   return job;
 }
 

@@ -49,19 +49,21 @@ void MeshServer::start() {
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options_.listen, credentials(), &port_);
+  int port = 0;
+  builder.AddListeningPort(options_.listen, credentials(), &port);
   builder.RegisterService(service_.get());
   server_ = builder.BuildAndStart();
-  if (!server_ || port_ == 0) {
+  if (!server_ || port == 0) {
     throw Error(ErrorCode::kUnavailable, "--listen", "cannot listen on " + options_.listen);
   }
   server_->GetHealthCheckService()->SetServingStatus(false);
-  spdlog::info("meshd listening on {} (port {}){}{}", options_.listen, port_,
+  port_ = port;
+  spdlog::info("meshd listening on {} (port {}){}{}", options_.listen, port,
                options_.tls_cert.empty() ? "" : ", TLS",
                options_.token_file.empty() ? "" : ", bearer token required");
   if (!options_.metrics.empty()) {
     metrics_port_ = metrics_.serve(options_.metrics);
-    spdlog::info("metrics at http://{}/metrics (port {})", options_.metrics, metrics_port_);
+    spdlog::info("metrics at http://{}/metrics (port {})", options_.metrics, metrics_port_.load());
   }
   const auto t = std::chrono::steady_clock::now();
   jobs_->start();

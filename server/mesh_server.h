@@ -9,6 +9,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -34,8 +35,9 @@ class MeshServer {
   void start();
   void shutdown(std::chrono::milliseconds grace);
 
-  int port() const { return port_; }
-  int metrics_port() const { return metrics_port_; }
+  // 0 until start() has bound the address (then safe to read from any thread).
+  int port() const { return port_.load(); }
+  int metrics_port() const { return metrics_port_.load(); }
   JobManager& jobs() { return *jobs_; }
   Metrics& metrics() { return metrics_; }
 
@@ -47,8 +49,8 @@ class MeshServer {
   std::unique_ptr<JobManager> jobs_;
   std::unique_ptr<MeshService> service_;
   std::unique_ptr<grpc::Server> server_;
-  int port_ = 0;
-  int metrics_port_ = 0;
+  std::atomic<int> port_{0};
+  std::atomic<int> metrics_port_{0};
   bool stopped_ = false;
 };
 

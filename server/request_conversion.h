@@ -26,7 +26,9 @@ struct ConversionLimits {
   double max_size_ratio = 1000;       // bound on (largest h) / (smallest h) of the size field
   int max_size_terms = 100;           // terms of the size field
   int max_fixed_points = 100'000;     // entries of fixed_points
-  int max_snapshot_nodes = 200'000;   // largest mesh whose snapshots may be streamed
+  // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well
+  // inside a client's default 4 MiB message limit.
+  int max_snapshot_nodes = 50'000;
 };
 
 // Validates `request` against the proto's documented ranges and `limits`, and converts it.

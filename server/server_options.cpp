@@ -29,7 +29,8 @@ const char* server_usage() {
   --max-retained N          finished jobs kept at most (default 1000)
   --drain-timeout SECONDS   on SIGTERM, how long running jobs may finish (default 30)
   --max-nodes N             largest estimated mesh accepted (default 5000000)
-  --max-snapshot-nodes N    largest mesh whose snapshots may stream (default 50000)
+  --max-snapshot-nodes N    largest mesh whose snapshots may stream, [0, 100000] (default
+                            50000; a snapshot must fit a client's 4 MiB message limit)
   --tls-cert FILE --tls-key FILE
                             serve TLS with this PEM certificate chain and key
   --tls-client-ca FILE      also require client certificates signed by this PEM CA
@@ -99,7 +100,7 @@ const std::map<std::string, Setter>& setters() {
       {"max-nodes", [](O& o, S f, S v) { o.jobs.limits.max_nodes = integer(f, v, 3, 1e9); }},
       {"max-snapshot-nodes",
        [](O& o, S f, S v) {
-         o.jobs.limits.max_snapshot_nodes = static_cast<int>(integer(f, v, 0, 1e7));
+         o.jobs.limits.max_snapshot_nodes = static_cast<int>(integer(f, v, 0, 1e5));
        }},
       {"tls-cert", [](O& o, S, S v) { o.tls_cert = v; }},
       {"tls-key", [](O& o, S, S v) { o.tls_key = v; }},
