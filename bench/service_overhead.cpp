@@ -1,0 +1,181 @@
+// service_overhead: what the service adds to a job. The same request is meshed in process (the
+// conversion, compilation and engine alone, as meshbench runs them) and through meshd over
+// loopback gRPC (an in-process server with one warm worker of the same kind, a client with
+// default limits that reads every event, assembles the result and checks its SHA-256). The runs
+// alternate; the table gives the median of each and their difference.
+//
+//   service_overhead [--backend cpu|gpu] [--threads T] [--repeat R] [--nodes N]... [REQUEST]
+//
+// REQUEST defaults to examples/g2_square_hole.textproto; --nodes (default 1000 and 100000)
+// rescales its h0 to aim at N nodes.
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "core/common/error.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/distmesh.h"
+#include "core/distmesh/node_estimate.h"
+#include "meshd/v1/mesh.pb.h"
+#include "meshd/v1/service.grpc.pb.h"
+#include "server/mesh_server.h"
+#include "server/request_conversion.h"
+#include "server/request_file.h"
+#include "server/result_encoding.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string backend = "cpu";
+  unsigned threads = 0;
+  int repeat = 5;
+  std::vector<double> nodes;
+  std::string request = "examples/g2_square_hole.textproto";
+};
+
+[[noreturn]] void usage(int code) {
+  std::fprintf(code == 0 ? stdout : stderr,
+               "usage: service_overhead [--backend cpu|gpu] [--threads T] [--repeat R]\n"
+               "                        [--nodes N]... [REQUEST.textproto]\n");
+  std::exit(code);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(2);
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help")
+      usage(0);
+    else if (a == "--backend")
+      o.backend = value();
+    else if (a == "--threads")
+      o.threads = static_cast<unsigned>(std::stoul(value()));
+    else if (a == "--repeat")
+      o.repeat = std::max(1, std::stoi(value()));
+    else if (a == "--nodes")
+      o.nodes.push_back(std::stod(value()));
+    else if (!a.empty() && a[0] == '-')
+      usage(2);
+    else
+      o.request = a;
+  }
+  if (o.nodes.empty()) o.nodes = {1000, 100000};
+  if (o.backend != "cpu" && o.backend != "gpu") usage(2);
+  return o;
+}
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The engine alone: what an in-process caller of core/ pays.
+double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, int64_t& nodes) {
+  const auto t = Clock::now();
+  const meshd::JobSpec spec = meshd::to_job_spec(request);
+  const meshd::MeshResult r =
+      meshd::generate_mesh(meshd::compile_problem(spec.problem), engine, nullptr, nullptr);
+  const double s = seconds_since(t);
+  nodes = static_cast<int64_t>(r.mesh.points.size());
+  return s;
+}
+
+// Through the service: Generate, every event read, the result assembled, parsed and checked.
+double through_service(meshd::v1::MeshService::Stub& stub, const meshd::v1::MeshRequest& request,
+                       int64_t& nodes) {
+  const auto t = Clock::now();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(10));
+  auto reader = stub.Generate(&context, request);
+  meshd::v1::MeshEvent event;
+  std::string payload;
+  std::string sha;
+  while (reader->Read(&event)) {
+    if (event.has_result_chunk()) payload += event.result_chunk().data();
+    if (event.has_done()) sha = event.done().result_sha256();
+  }
+  const grpc::Status status = reader->Finish();
+  meshd::v1::MeshData mesh;
+  if (!status.ok() || !mesh.ParseFromString(payload) || meshd::sha256_hex(payload) != sha) {
+    std::fprintf(stderr, "service_overhead: the service failed: %s\n",
+                 status.error_message().c_str());
+    std::exit(1);
+  }
+  const double s = seconds_since(t);
+  nodes = mesh.points_size() / 2;
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  spdlog::set_level(spdlog::level::warn);
+  try {
+    const meshd::Backend kind = opt.backend == "gpu" ? meshd::Backend::kGpu : meshd::Backend::kCpu;
+    const meshd::WorkerEngineFactory factory = kind == meshd::Backend::kGpu
+                                                   ? meshd::gpu_engine_factory(0)
+                                                   : meshd::cpu_engine_factory(opt.threads);
+    const auto engine = factory();
+    meshd::ServerOptions options;
+    options.listen = "127.0.0.1:0";
+    meshd::MeshServer server(options, {{"bench", kind, factory}});
+    server.start();
+    auto stub = meshd::v1::MeshService::NewStub(grpc::CreateChannel(
+        "127.0.0.1:" + std::to_string(server.port()), grpc::InsecureChannelCredentials()));
+
+    const meshd::v1::MeshRequest base = meshd::read_request_file(opt.request);
+    std::printf("request %s on %s, median of %d alternating runs each (%d below 10k nodes)\n\n",
+                opt.request.c_str(), engine->device().c_str(), opt.repeat, 5 * opt.repeat);
+    std::printf("| nodes | in process ms | through meshd ms | overhead ms | overhead %% |\n");
+    std::printf("|---|---|---|---|---|\n");
+    for (const double target : opt.nodes) {
+      meshd::v1::MeshRequest request = base;
+      request.set_h0(meshd::h0_for_node_count(meshd::to_problem(base), target));
+      request.mutable_options()->set_backend(kind == meshd::Backend::kGpu
+                                                 ? meshd::v1::JobOptions::BACKEND_GPU
+                                                 : meshd::v1::JobOptions::BACKEND_CPU);
+      int64_t nodes_a = 0, nodes_b = 0;
+      in_process(engine->engine(), request, nodes_a);  // warm both paths at this size
+      through_service(*stub, request, nodes_b);
+      std::vector<double> a, b;
+      // Small jobs take milliseconds and vary more: more runs.
+      const int repeat = nodes_a < 10'000 ? 5 * opt.repeat : opt.repeat;
+      for (int r = 0; r < repeat; ++r) {
+        a.push_back(in_process(engine->engine(), request, nodes_a));
+        b.push_back(through_service(*stub, request, nodes_b));
+      }
+      if (nodes_a != nodes_b) {
+        std::fprintf(stderr, "service_overhead: node counts differ (%lld vs %lld)\n",
+                     static_cast<long long>(nodes_a), static_cast<long long>(nodes_b));
+        return 1;
+      }
+      const double ma = median(a), mb = median(b);
+      std::printf("| %lld | %.2f | %.2f | %.2f | %.1f |\n", static_cast<long long>(nodes_a),
+                  1e3 * ma, 1e3 * mb, 1e3 * (mb - ma), 100 * (mb - ma) / ma);
+      std::fflush(stdout);
+    }
+    server.shutdown(std::chrono::milliseconds(0));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "service_overhead: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
