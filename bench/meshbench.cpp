@@ -21,7 +21,7 @@
 #include "core/mesh/mesh_file.h"
 #include "core/mesh/validity.h"
 #include "server/request_conversion.h"
-#include "server/request_file.h"
+#include "client/request_file.h"
 #ifdef MESHD_HAVE_CUDA
 #include "kernels/gpu_engine.h"
 #endif

@@ -26,8 +26,8 @@
 #include "meshd/v1/service.grpc.pb.h"
 #include "server/mesh_server.h"
 #include "server/request_conversion.h"
-#include "server/request_file.h"
-#include "server/result_encoding.h"
+#include "client/request_file.h"
+#include "core/common/sha256.h"
 
 namespace {
 

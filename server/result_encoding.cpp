@@ -1,10 +1,8 @@
 #include "server/result_encoding.h"
 
-#include <openssl/evp.h>
-
 #include <algorithm>
 
-#include "core/common/error.h"
+#include "core/common/sha256.h"
 
 namespace meshd {
 
@@ -26,22 +24,6 @@ v1::MeshData to_mesh_data(const Mesh& mesh) {
   for (int32_t tag : mesh.boundary_tags) out.add_boundary_tags(tag);
   for (const auto& name : mesh.boundary_names) out.add_boundary_names(name);
   return out;
-}
-
-std::string sha256_hex(const std::string& bytes) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr) != 1) {
-    throw Error(ErrorCode::kInternal, "", "SHA-256 of the result failed");
-  }
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string hex;
-  hex.reserve(2 * length);
-  for (unsigned int i = 0; i < length; ++i) {
-    hex.push_back(kHex[digest[i] >> 4]);
-    hex.push_back(kHex[digest[i] & 15]);
-  }
-  return hex;
 }
 
 namespace {

@@ -28,7 +28,4 @@ v1::MeshData to_mesh_data(const Mesh& mesh);
 // Encodes `result`, cutting the payload into chunks of at most `chunk_bytes` (> 0).
 EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes = kResultChunkBytes);
 
-// Lower-case hex SHA-256 of `bytes`.
-std::string sha256_hex(const std::string& bytes);
-
 }  // namespace meshd

@@ -10,7 +10,7 @@
 
 #include "core/common/error.h"
 #include "core/distmesh/node_estimate.h"
-#include "server/request_file.h"
+#include "client/request_file.h"
 
 namespace meshd {
 namespace {

@@ -1,4 +1,4 @@
-#include "server/request_file.h"
+#include "client/request_file.h"
 
 #include <gtest/gtest.h>
 

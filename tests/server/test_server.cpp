@@ -1,6 +1,6 @@
 #include "tests/server/test_server.h"
 
-#include "server/result_encoding.h"
+#include "core/common/sha256.h"
 
 namespace meshd::testing {
 

@@ -1,0 +1,212 @@
+#include "client/cli_options.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include "core/common/error.h"
+
+namespace meshd::cli {
+
+namespace {
+
+const std::set<std::string> kCommands = {"generate", "submit", "watch",  "cancel",
+                                         "status",   "list",   "health", "help"};
+
+double number(const std::string& flag, const std::string& v) {
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end != '\0' || !std::isfinite(x))
+    throw_invalid(flag, "expects a number (got '" + v + "')");
+  return x;
+}
+
+int integer(const std::string& flag, const std::string& v) {
+  const double x = number(flag, v);
+  if (x != std::floor(x) || std::abs(x) > 1e9)
+    throw_invalid(flag, "expects a whole number (got '" + v + "')");
+  return static_cast<int>(x);
+}
+
+}  // namespace
+
+CliOptions parse_cli(const std::vector<std::string>& args) {
+  CliOptions o;
+  if (const char* token = std::getenv("MESHD_TOKEN")) o.connection.token = token;
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string a = args[i];
+    std::string value;
+    bool has_value = false;
+    if (a.rfind("--", 0) == 0) {
+      if (const auto eq = a.find('='); eq != std::string::npos) {
+        value = a.substr(eq + 1);
+        a = a.substr(0, eq);
+        has_value = true;
+      }
+    }
+    auto next = [&]() -> std::string {
+      if (has_value) return value;
+      if (i + 1 >= args.size()) throw_invalid(a, "needs a value");
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help")
+      o.help = true;
+    else if (a == "--json")
+      o.json = true;
+    else if (a == "--server")
+      o.connection.server = next();
+    else if (a == "--deadline") {
+      o.connection.deadline_s = number(a, next());
+      if (!(o.connection.deadline_s > 0)) throw_invalid(a, "must be > 0 seconds");
+    } else if (a == "--tls")
+      o.connection.tls = true;
+    else if (a == "--tls-ca")
+      o.connection.tls_ca = next();
+    else if (a == "--tls-cert")
+      o.connection.tls_cert = next();
+    else if (a == "--tls-key")
+      o.connection.tls_key = next();
+    else if (a == "--tls-server-name")
+      o.connection.tls_server_name = next();
+    else if (a == "--token-file")
+      o.connection.token = read_first_line(next(), a);
+    else if (a == "-o" || a == "--output")
+      o.outputs.push_back(next());
+    else if (a == "--format")
+      o.format = next();
+    else if (a == "--frames")
+      o.frames_dir = next();
+    else if (a == "--backend") {
+      o.backend = next();
+      if (*o.backend != "auto" && *o.backend != "gpu" && *o.backend != "cpu")
+        throw_invalid(a, "must be auto, gpu or cpu (got '" + *o.backend + "')");
+    } else if (a == "--priority")
+      o.priority = integer(a, next());
+    else if (a == "--snapshot-every")
+      o.snapshot_every = integer(a, next());
+    else if (a == "--timeout")
+      o.timeout_s = number(a, next());
+    else if (a == "--label")
+      o.label = next();
+    else if (a == "--circle")
+      o.circle = number(a, next());
+    else if (a == "--hole")
+      o.hole = number(a, next());
+    else if (a == "--h0")
+      o.h0 = number(a, next());
+    else if (a == "--seed")
+      o.seed = static_cast<uint64_t>(integer(a, next()));
+    else if (a == "--rectangle") {
+      const std::string v = next();
+      const auto comma = v.find(',');
+      if (comma == std::string::npos) throw_invalid(a, "expects W,H (got '" + v + "')");
+      o.rectangle = {number(a, v.substr(0, comma)), number(a, v.substr(comma + 1))};
+    } else if (a == "--state")
+      o.state = next();
+    else if (!a.empty() && a[0] == '-')
+      throw_invalid(a, "unknown flag; see meshctl --help");
+    else if (o.command.empty()) {
+      if (!kCommands.count(a)) throw_invalid(a, "unknown command; see meshctl --help");
+      o.command = a;
+    } else
+      o.args.push_back(a);
+  }
+  if (o.command == "help") {
+    o.help = true;
+    o.command = o.args.empty() ? "" : o.args[0];
+  }
+  if (o.command.empty()) o.help = true;
+  return o;
+}
+
+std::string help_text(const std::string& command) {
+  const std::string connection = R"(
+Connection flags (every command):
+  --server HOST:PORT      meshd's address (default 127.0.0.1:50051)
+  --deadline SECONDS      deadline of each call (default 600)
+  --tls                   use TLS with the system's roots; --tls-ca FILE trusts FILE instead
+  --tls-cert FILE --tls-key FILE   present a client certificate
+  --tls-server-name NAME  check the server's certificate for NAME
+  --token-file FILE       send "authorization: Bearer <first line of FILE>" (or $MESHD_TOKEN)
+  --json                  print machine-readable JSON (one object per line) instead of text
+)";
+  const std::string request_flags = R"(
+Request (a text-format meshd.v1.MeshRequest file, or flags for simple shapes):
+  --circle R | --rectangle W,H   a disk of radius R, or a W x H rectangle, centred at 0
+  --hole R                       minus a disk of radius R at the centre
+  --h0 H                         edge length (required with the shape flags)
+  --seed N
+Job options (override the file's):
+  --backend auto|gpu|cpu  --priority P (-10..10)  --label TEXT
+)";
+  if (command == "generate") {
+    return "usage: meshctl generate [REQUEST.textproto] [flags]\n\n"
+           "Meshes a request on meshd and streams its progress; writes the mesh.\n\n"
+           "  -o FILE                write the mesh; the format follows the extension: .msh\n"
+           "                         (MSH 4.1), .msh22, .vtu, .svg; may be given several times\n"
+           "  --format NAME          msh41, msh41-binary, msh22, vtu or svg for every -o\n"
+           "  --frames DIR           write an SVG of each snapshot to DIR (snapshots every 10\n"
+           "                         iterations unless --snapshot-every K says otherwise)\n"
+           "  --snapshot-every K     ask for a snapshot every K iterations\n" +
+           request_flags + connection +
+           "\nExamples:\n"
+           "  meshctl generate examples/g2_square_hole.textproto -o g2.msh -o g2.svg\n"
+           "  meshctl generate --circle 1 --h0 0.05 -o disk.vtu --backend cpu\n"
+           "  meshctl generate examples/g1_disk.textproto --frames frames/ --json\n";
+  }
+  if (command == "submit") {
+    return "usage: meshctl submit [REQUEST.textproto] [flags]\n\n"
+           "Queues a request and prints its job id at once; the job runs on without the client.\n"
+           "  --timeout SECONDS      the job's time limit from now, queue included\n" +
+           request_flags + connection +
+           "\nExample:\n  id=$(meshctl submit examples/g1_disk.textproto) && meshctl watch $id -o "
+           "g1.msh\n";
+  }
+  if (command == "watch") {
+    return "usage: meshctl watch JOB_ID [-o FILE]... [--frames DIR]\n\n"
+           "Streams a job's events from the start (a finished job: its result at once) and\n"
+           "writes its mesh like generate.\n" +
+           connection + "\nExample:\n  meshctl watch j0000000001-2f3a1c -o mesh.msh\n";
+  }
+  if (command == "cancel") {
+    return "usage: meshctl cancel JOB_ID\n\nCancels a queued or running job and prints its "
+           "state.\n" +
+           connection;
+  }
+  if (command == "status") {
+    return "usage: meshctl status JOB_ID\n\nPrints a job's state, progress and, when done, its "
+           "statistics.\n" +
+           connection;
+  }
+  if (command == "list") {
+    return "usage: meshctl list [--state queued|running|succeeded|failed|cancelled]\n\n"
+           "Lists the jobs the server holds, in submission order.\n" +
+           connection;
+  }
+  if (command == "health") {
+    return "usage: meshctl health\n\nAsks grpc.health.v1: exit 0 when SERVING, 10 when not "
+           "serving, 3 when unreachable.\n" +
+           connection;
+  }
+  return R"(usage: meshctl COMMAND [args] [flags]
+
+The command-line client of meshd, the DistMesh mesh service.
+
+Commands:
+  generate [REQUEST]   mesh a request, show progress, write the mesh (-o FILE)
+  submit [REQUEST]     queue a request, print its job id
+  watch JOB_ID         stream a job's events and write its mesh
+  cancel JOB_ID        cancel a job
+  status JOB_ID        show a job
+  list                 list the server's jobs
+  health               ask whether the server is serving
+
+'meshctl help COMMAND' or 'meshctl COMMAND --help' shows a command's flags and examples.
+
+Exit codes: 0 ok, 1 failed, 2 bad request or command line, 3 server unavailable,
+4 deadline exceeded, 5 cancelled, 6 request too large, 7 no such job, 8 unauthenticated,
+9 failed precondition (e.g. no GPU), 10 not serving, 11 bad result or output file.
+)";
+}
+
+}  // namespace meshd::cli

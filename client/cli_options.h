@@ -1,0 +1,42 @@
+// meshctl's command line: the command, its arguments and flags, and the help text of each.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "client/connection.h"
+
+namespace meshd::cli {
+
+struct CliOptions {
+  std::string command;  // generate, submit, watch, cancel, status, list, health, help
+  std::vector<std::string> args;
+  ConnectionOptions connection;
+  bool json = false;
+  bool help = false;
+
+  // generate / submit / watch
+  std::vector<std::string> outputs;  // -o FILE
+  std::string format;                // --format NAME for every output
+  std::string frames_dir;            // --frames DIR
+  std::optional<std::string> backend;
+  std::optional<int> priority;
+  std::optional<int> snapshot_every;
+  std::optional<double> timeout_s;
+  std::string label;
+  // A request without a file: --circle R | --rectangle W,H, optionally --hole R, and --h0.
+  std::optional<double> circle, hole, h0;
+  std::optional<std::pair<double, double>> rectangle;
+  std::optional<uint64_t> seed;
+  // list
+  std::string state;
+};
+
+// Parses argv (without the program name). Throws Error(kInvalidArgument) naming the flag.
+CliOptions parse_cli(const std::vector<std::string>& args);
+
+// The help of `command`, or the overview for an empty or unknown one.
+std::string help_text(const std::string& command);
+
+}  // namespace meshd::cli

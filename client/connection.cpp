@@ -1,0 +1,58 @@
+#include "client/connection.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/common/error.h"
+
+namespace meshd::cli {
+
+namespace {
+
+std::string read_file(const std::string& path, const std::string& flag) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  if (!in || !(s << in.rdbuf())) throw_invalid(flag, "cannot read " + path);
+  return s.str();
+}
+
+}  // namespace
+
+std::string read_first_line(const std::string& path, const std::string& flag) {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) throw_invalid(flag, "cannot read " + path);
+  const auto first = line.find_first_not_of(" \t\r");
+  if (first == std::string::npos) throw_invalid(flag, path + " is empty");
+  return line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+}
+
+Connection::Connection(const ConnectionOptions& options) : options_(options) {
+  std::shared_ptr<grpc::ChannelCredentials> credentials;
+  grpc::ChannelArguments arguments;
+  if (options.tls || !options.tls_ca.empty() || !options.tls_cert.empty()) {
+    grpc::SslCredentialsOptions ssl;
+    if (!options.tls_ca.empty()) ssl.pem_root_certs = read_file(options.tls_ca, "--tls-ca");
+    if (!options.tls_cert.empty()) {
+      ssl.pem_cert_chain = read_file(options.tls_cert, "--tls-cert");
+      ssl.pem_private_key = read_file(options.tls_key, "--tls-key");
+    }
+    credentials = grpc::SslCredentials(ssl);
+    if (!options.tls_server_name.empty())
+      arguments.SetSslTargetNameOverride(options.tls_server_name);
+  } else {
+    credentials = grpc::InsecureChannelCredentials();
+  }
+  channel_ = grpc::CreateCustomChannel(options.server, credentials, arguments);
+}
+
+std::unique_ptr<grpc::ClientContext> Connection::context() const {
+  auto context = std::make_unique<grpc::ClientContext>();
+  context->set_deadline(std::chrono::system_clock::now() +
+                        std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                            std::chrono::duration<double>(options_.deadline_s)));
+  if (!options_.token.empty()) context->AddMetadata("authorization", "Bearer " + options_.token);
+  return context;
+}
+
+}  // namespace meshd::cli

@@ -1,0 +1,28 @@
+// --frames DIR: an SVG of every snapshot the server streams, so that a user can watch the mesh
+// settle. Keeps the triangles of the last snapshot that carried them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "meshd/v1/service.pb.h"
+
+namespace meshd::cli {
+
+class FrameWriter {
+ public:
+  // Creates `dir` if needed. Throws Error(kInvalidArgument) naming "--frames" when it cannot.
+  explicit FrameWriter(std::string dir);
+  // Writes DIR/frame_<iteration, 6 digits>.svg. Returns the path.
+  std::string write(const v1::Snapshot& snapshot);
+  int frames() const { return frames_; }
+
+ private:
+  std::string dir_;
+  std::vector<std::array<int32_t, 3>> triangles_;
+  int frames_ = 0;
+};
+
+}  // namespace meshd::cli
