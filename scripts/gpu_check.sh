@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs on the GPU machine from a bundle made by ../shared/tools/gpu-bundle (.gpu/): the GPU tests,
-# compute-sanitizer (memcheck, racecheck) on the agreement tests, then the GPU benchmark.
-# Logs go to $OUT (or ./gpu-logs). Usage: scripts/gpu_check.sh [tests|sanitize|bench]...
+# Runs on the GPU machine from a bundle of the executables (.gpu/, made by the gpu-bundle tool):
+# the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, the GPU
+# benchmark, and the service on a GPU (its tests, meshd + meshctl end to end, the overhead).
+# Logs go to $OUT (or ./gpu-logs). Usage: scripts/gpu_check.sh [tests|sanitize|bench|service]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -38,5 +39,18 @@ for step in "${steps[@]}"; do
       for n in 20000 100000 1000000; do
         $run meshbench --backend cpu --nodes $n $req 2>&1 | tee -a "$out/bench_cpu.log"
       done ;;
+    service)
+      $run server_gpu_service_test 2>&1 | tee "$out/gpu_service_tests.log" | tail -6
+      # meshd on its defaults (a GPU worker, a CPU worker) and meshctl through it.
+      $run meshd > "$out/meshd.log" 2>&1 &
+      meshd_pid=$!
+      for _ in $(seq 100); do $run meshctl health --deadline 1 > /dev/null 2>&1 && break; sleep 0.2; done
+      for request in examples/*.textproto; do
+        $run meshctl generate "$request" -o "$out/$(basename "$request" .textproto).msh" 2>&1 |
+          tee -a "$out/meshctl.log" | grep -E "done on|q_min"
+      done
+      kill -TERM $meshd_pid; wait $meshd_pid; echo "meshd exit $?"
+      $run service_overhead --backend gpu --repeat 5 2>&1 | tee "$out/service_overhead_gpu.log"
+      $run service_overhead --backend cpu --repeat 3 2>&1 | tee "$out/service_overhead_cpu.log" ;;
   esac
 done

@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
-  python3 python3-meshio python3-grpcio python3-protobuf gmsh
+  python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl
 )
 missing=()
 for p in "${packages[@]}"; do
