@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/common/error.h"
+#include "core/delaunay/complete_triangulation.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
 #include "core/distmesh/initial_triangulation.h"
@@ -120,6 +121,8 @@ struct GpuEngine::Impl {
   // tris and nbrs hold the initial points' triangulation by construction, not yet flipped to
   // Delaunay nor filtered: the next full triangulation starts from it instead of CGAL.
   bool prepared = false;
+  bool prepared_checked = false;   // its triangles' orientation is known to be right
+  bool completion_failed = false;  // the last completion's checks failed: CGAL instead
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
@@ -190,13 +193,51 @@ struct GpuEngine::Impl {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
     const int64_t kept = last_total(position, flags);
+    // The triangles untouched by the removal survive, renumbered: the next full triangulation
+    // completes them (complete_triangulation.h) instead of starting over.
+    std::vector<std::array<int32_t, 3>> survivors;
+    if (have_triangulation) {
+      std::vector<Tri> old_tris(tris.size());
+      std::vector<int32_t> new_index(n);
+      std::vector<uint8_t> node_kept(n);
+      tris.download(old_tris.data(), stream);
+      position.download(new_index.data(), stream);
+      flags.download(node_kept.data(), stream);
+      sync();
+      survivors.reserve(old_tris.size());
+      for (const Tri& t : old_tris) {
+        if (node_kept[t.v[0]] && node_kept[t.v[1]] && node_kept[t.v[2]])
+          survivors.push_back({new_index[t.v[0]], new_index[t.v[1]], new_index[t.v[2]]});
+      }
+    }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
     const int64_t removed = n - kept;
     n = kept;
     p.resize(n);
     reset_node_state();
+    if (!survivors.empty()) prepare_completion(std::move(survivors));
     return removed;
+  }
+
+  // Completes `partial` (triangles of the current nodes) on the host and uploads the result
+  // for the next full triangulation; the nodes may have moved since those triangles were made,
+  // so the flips check orientations first.
+  void prepare_completion(std::vector<std::array<int32_t, 3>> partial) {
+    std::vector<Vec2> host(n);
+    p.download(host.data(), stream);
+    sync();
+    const Triangulation t =
+        complete_triangulation(host, std::move(partial), static_cast<int32_t>(nfix));
+    if (t.triangles.empty()) {
+      completion_failed = true;  // reported as a fallback by the next retriangulate
+      return;
+    }
+    tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
+    nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
+    prepared = true;
+    prepared_checked = false;
+    sync();  // t is a host vector
   }
 
   // position[last] + flag[last]: the total of an exclusive scan.
@@ -251,6 +292,7 @@ struct GpuEngine::Impl {
     tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
     nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
     prepared = true;
+    prepared_checked = true;
     sync();  // t is a host vector
   }
 
@@ -263,9 +305,11 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemsetAsync(keep.data(), 1, m, stream));
     flipped_round.resize(m);
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, m * sizeof(int32_t), stream));
-    // No orientation check: the host checked every triangle with exact predicates, and flat
-    // pockets along lattice lines would leave the device's filter undecided.
-    return flip_to_delaunay();
+    // No orientation check for the lattice: the host checked every triangle with exact
+    // predicates, and flat pockets along lattice lines would leave the device's filter undecided.
+    if (prepared_checked) return flip_to_delaunay();
+    int64_t dropped = 0;
+    return repair(dropped);
   }
 
   // Whether the triangulation covers the convex hull of all n nodes, as a full one does: a
@@ -556,14 +600,22 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     // The node set is the same as at the last triangulation: the loop asks for a full one to
     // close the gaps of dropped slivers. Repair, and rebuild only if a gap is really there.
     int64_t dropped = 0;
-    const int64_t flips = s.repair(dropped);
-    if (flips >= 0 && s.covers_hull()) {
+    int64_t flips = s.repair(dropped);
+    if (flips >= 0 && !s.covers_hull()) {
+      // Close the gaps with CGAL on their boundary points alone, then flip again.
+      std::vector<std::array<int32_t, 3>> partial(s.tris.size());
+      s.tris.download(reinterpret_cast<Tri*>(partial.data()), s.stream);
+      s.prepare_completion(std::move(partial));
+      flips = s.prepared ? s.flip_prepared() : -1;
+    }
+    if (flips >= 0) {
       stats.flips = flips;
       const TopologyStats sizes = s.filter_and_bars();
       stats.triangles = sizes.triangles;
       stats.bars = sizes.bars;
       return stats;
     }
+    stats.repair_failed = true;
   } else if (!stats.full) {
     const int64_t flips = s.repair(stats.dropped);
     if (flips < 0) {
@@ -574,6 +626,8 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     }
   }
   if (stats.full) s.full_triangulation();
+  if (s.completion_failed) stats.repair_failed = true;
+  s.completion_failed = false;
   s.have_triangulation = true;
   const TopologyStats sizes = s.filter_and_bars();
   stats.triangles = sizes.triangles;

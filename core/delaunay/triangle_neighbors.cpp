@@ -14,9 +14,9 @@ bool triangle_neighbors(const std::vector<std::array<int32_t, 3>>& triangles, si
     for (int k = 0; k < 3; ++k) ++start[std::min(t[(k + 1) % 3], t[(k + 2) % 3]) + 1];
   for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
   struct Use {
-    int32_t far;      // the larger end
-    bool forward;     // runs from the smaller end to the larger
-    int64_t id;       // 3 t + k
+    int32_t far;   // the larger end
+    bool forward;  // runs from the smaller end to the larger
+    int64_t id;    // 3 t + k
   };
   std::vector<Use> uses(3 * m);
   std::vector<int64_t> fill(start.begin(), start.end() - 1);
