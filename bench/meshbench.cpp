@@ -34,6 +34,7 @@ struct Options {
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
+  bool phases = false;
   std::vector<std::string> outputs;
   std::vector<std::string> requests;
 };
@@ -41,12 +42,13 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
-               "                 [--nodes N] [--repeat R]\n"
+               "                 [--nodes N] [--repeat R] [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
+               "  --phases    after the table, one more with the seconds of each phase\n"
                "  -o OUT      write each mesh to OUT ({name} = request file stem; .msh .msh22\n"
                "              .vtu .svg); may be given several times\n");
   std::exit(code);
@@ -72,6 +74,8 @@ Options parse(int argc, char** argv) {
       o.nodes = std::stod(value());
     else if (a == "--repeat")
       o.repeat = std::max(1, std::stoi(value()));
+    else if (a == "--phases")
+      o.phases = true;
     else if (a == "-o")
       o.outputs.push_back(value());
     else if (!a.empty() && a[0] == '-')
@@ -133,6 +137,7 @@ int main(int argc, char** argv) {
       "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
+  std::vector<std::string> phase_rows;
   for (const std::string& path : opt.requests) {
     const std::string name = std::filesystem::path(path).stem().string();
     try {
@@ -167,6 +172,13 @@ int main(int argc, char** argv) {
           best.quality.min_angle_deg,
           validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
       if (!validity.problems.empty() || !s.converged) ++failures;
+      char row[512];
+      std::snprintf(row, sizeof row,
+                    "| %s | %s | %zu | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |\n",
+                    name.c_str(), engine->name(), best.mesh.points.size(), s.t_initial,
+                    s.t_triangulation - s.t_full_triangulation, s.t_full_triangulation, s.t_forces,
+                    s.t_density, s.t_cleanup, s.t_finish, s.t_total);
+      phase_rows.push_back(row);
       for (const std::string& out : opt.outputs) {
         const std::string file = expand(out, name);
         meshd::write_mesh_file(best.mesh, file, meshd::format_from_path(file));
@@ -176,6 +188,13 @@ int main(int argc, char** argv) {
                    meshd::error_code_name(e.code()), e.what());
       ++failures;
     }
+  }
+  if (opt.phases) {
+    // t_cleanup overlaps the others: its triangulations and steps count there too.
+    std::printf(
+        "\n| request | backend | nodes | t_initial | t_repair | t_full | t_forces | t_density "
+        "| t_cleanup | t_finish | t_total |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const std::string& row : phase_rows) std::printf("%s", row.c_str());
   }
   return failures == 0 ? 0 : 1;
 }

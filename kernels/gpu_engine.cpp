@@ -5,8 +5,10 @@
 #include <cstring>
 
 #include "core/common/error.h"
+#include "core/delaunay/complete_triangulation.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
+#include "core/distmesh/initial_triangulation.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
@@ -123,9 +125,14 @@ struct GpuEngine::Impl {
 
   // Triangulation: all Delaunay triangles, their neighbours, the kept flags, the bars and CSR.
   bool have_triangulation = false;
+  // tris and nbrs hold the initial points' triangulation by construction, not yet flipped to
+  // Delaunay nor filtered: the next full triangulation starts from it instead of CGAL.
+  bool prepared = false;
+  bool prepared_checked = false;   // its triangles' orientation is known to be right
+  bool completion_failed = false;  // the last completion's checks failed: CGAL instead
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
-  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count;
+  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   int32_t round = 0;
   DeviceBuffer<Bar> bars;
@@ -183,6 +190,7 @@ struct GpuEngine::Impl {
       MESHD_CUDA_CHECK(cudaMemcpyAsync(on_boundary.data(), fixed_boundary.data(), nfix,
                                        cudaMemcpyHostToDevice, stream));
     have_triangulation = false;
+    prepared = false;
     bars.resize(0);
     sync();  // fixed_boundary is a stack buffer
   }
@@ -192,13 +200,51 @@ struct GpuEngine::Impl {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
     const int64_t kept = last_total(position, flags);
+    // The triangles untouched by the removal survive, renumbered: the next full triangulation
+    // completes them (complete_triangulation.h) instead of starting over.
+    std::vector<std::array<int32_t, 3>> survivors;
+    if (have_triangulation) {
+      std::vector<Tri> old_tris(tris.size());
+      std::vector<int32_t> new_index(n);
+      std::vector<uint8_t> node_kept(n);
+      tris.download(old_tris.data(), stream);
+      position.download(new_index.data(), stream);
+      flags.download(node_kept.data(), stream);
+      sync();
+      survivors.reserve(old_tris.size());
+      for (const Tri& t : old_tris) {
+        if (node_kept[t.v[0]] && node_kept[t.v[1]] && node_kept[t.v[2]])
+          survivors.push_back({new_index[t.v[0]], new_index[t.v[1]], new_index[t.v[2]]});
+      }
+    }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
     const int64_t removed = n - kept;
     n = kept;
     p.resize(n);
     reset_node_state();
+    if (!survivors.empty()) prepare_completion(std::move(survivors));
     return removed;
+  }
+
+  // Completes `partial` (triangles of the current nodes) on the host and uploads the result
+  // for the next full triangulation; the nodes may have moved since those triangles were made,
+  // so the flips check orientations first.
+  void prepare_completion(std::vector<std::array<int32_t, 3>> partial) {
+    std::vector<Vec2> host(n);
+    p.download(host.data(), stream);
+    sync();
+    const Triangulation t =
+        complete_triangulation(host, std::move(partial), static_cast<int32_t>(nfix));
+    if (t.triangles.empty()) {
+      completion_failed = true;  // reported as a fallback by the next retriangulate
+      return;
+    }
+    tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
+    nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
+    prepared = true;
+    prepared_checked = false;
+    sync();  // t is a host vector
   }
 
   // position[last] + flag[last]: the total of an exclusive scan.
@@ -241,6 +287,52 @@ struct GpuEngine::Impl {
     flipped_round.resize(tris.size());
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff,
                                      flipped_round.size() * sizeof(int32_t), stream));
+  }
+
+  // Uploads the initial triangulation (initial_triangulation.h) for the first retriangulate.
+  void prepare(const InitialGrid& grid, int64_t total) {
+    std::vector<uint8_t> kept(total);
+    flags.download(kept.data(), stream);
+    sync();
+    const Triangulation t = initial_triangulation(grid, kept, problem->fixed_points);
+    if (t.triangles.empty()) return;
+    tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
+    nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
+    prepared = true;
+    prepared_checked = true;
+    sync();  // t is a host vector
+  }
+
+  // Flips the prepared triangulation to Delaunay. Returns the flips, or -1 when it cannot (a
+  // triangle turned over): then the caller triangulates with CGAL.
+  int64_t flip_prepared() {
+    prepared = false;
+    const int64_t m = static_cast<int64_t>(tris.size());
+    keep.resize(m);  // every triangle counts: any that turned over calls for a rebuild
+    MESHD_CUDA_CHECK(cudaMemsetAsync(keep.data(), 1, m, stream));
+    flipped_round.resize(m);
+    MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, m * sizeof(int32_t), stream));
+    // No orientation check for the lattice: the host checked every triangle with exact
+    // predicates, and flat pockets along lattice lines would leave the device's filter undecided.
+    if (prepared_checked) return flip_to_delaunay();
+    int64_t dropped = 0;
+    return repair(dropped);
+  }
+
+  // Whether the triangulation covers the convex hull of all n nodes, as a full one does: a
+  // disk (2 n - 2 - h triangles for h edges on its boundary) whose boundary never turns right.
+  // After a repair that dropped collapsed slivers this is usually still so, and then the
+  // repaired triangulation is the one CGAL would build.
+  bool covers_hull() {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    next.resize(n);
+    reset_counters();
+    gpu::launch_hull_links(tris.span(), nbrs.span(), next.span(), counters.data(), stream);
+    gpu::launch_hull_turns(p.span(), tris.span(), nbrs.span(), next.span(), counters.data(),
+                           stream);
+    const gpu::TopologyCounters c = read_counters();
+    // hull_links counts boundary edges in `candidates`, hull_turns right turns in `fatal`.
+    return c.fatal == 0 && m == 2 * n - 2 - c.candidates;
   }
 
   void reset_counters() {
@@ -286,6 +378,12 @@ struct GpuEngine::Impl {
       MESHD_CUDA_CHECK(
           cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
     }
+    return flip_to_delaunay();
+  }
+
+  // Lawson flips on the device until every edge passes the in-circle test. Returns the flips,
+  // or -1 when a rebuild is needed.
+  int64_t flip_to_delaunay() {
     const int64_t mt = static_cast<int64_t>(tris.size());
     vote.resize(mt);
     partner.resize(mt);
@@ -475,6 +573,7 @@ int64_t GpuEngine::initialize(const CompiledProblem& problem) {
                                      cudaMemcpyDeviceToDevice, s.stream));
   gpu::launch_scatter_grid(grid, s.flags.span(), s.position.span(), s.p.span(), s.nfix, s.stream);
   s.reset_node_state();
+  s.prepare(grid, total);
   return s.n;
 }
 
@@ -493,7 +592,38 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   s.use_device();
   TopologyStats stats;
   stats.full = full || !s.have_triangulation;
-  if (!stats.full) {
+  if (stats.full && s.prepared) {
+    stats.flips = s.flip_prepared();
+    if (stats.flips >= 0) {
+      s.have_triangulation = true;
+      const TopologyStats sizes = s.filter_and_bars();
+      stats.triangles = sizes.triangles;
+      stats.bars = sizes.bars;
+      return stats;
+    }
+    stats.flips = 0;
+    stats.repair_failed = true;
+  } else if (stats.full && s.have_triangulation) {
+    // The node set is the same as at the last triangulation: the loop asks for a full one to
+    // close the gaps of dropped slivers. Repair, and rebuild only if a gap is really there.
+    int64_t dropped = 0;
+    int64_t flips = s.repair(dropped);
+    if (flips >= 0 && !s.covers_hull()) {
+      // Close the gaps with CGAL on their boundary points alone, then flip again.
+      std::vector<std::array<int32_t, 3>> partial(s.tris.size());
+      s.tris.download(reinterpret_cast<Tri*>(partial.data()), s.stream);
+      s.prepare_completion(std::move(partial));
+      flips = s.prepared ? s.flip_prepared() : -1;
+    }
+    if (flips >= 0) {
+      stats.flips = flips;
+      const TopologyStats sizes = s.filter_and_bars();
+      stats.triangles = sizes.triangles;
+      stats.bars = sizes.bars;
+      return stats;
+    }
+    stats.repair_failed = true;
+  } else if (!stats.full) {
     const int64_t flips = s.repair(stats.dropped);
     if (flips < 0) {
       stats.full = true;
@@ -503,6 +633,8 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     }
   }
   if (stats.full) s.full_triangulation();
+  if (s.completion_failed) stats.repair_failed = true;
+  s.completion_failed = false;
   s.have_triangulation = true;
   const TopologyStats sizes = s.filter_and_bars();
   stats.triangles = sizes.triangles;
@@ -596,14 +728,20 @@ void GpuEngine::read_points(std::vector<Vec2>& points) {
 void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
   Impl& s = *impl_;
   s.use_device();
-  std::vector<Tri> all(s.tris.size());
-  std::vector<uint8_t> keep(s.keep.size());
-  s.tris.download(all.data(), s.stream);
-  s.keep.download(keep.data(), s.stream);
+  // Compacted on the device: at a million triangles the host loop over all of them cost more
+  // than the copy.
+  const int64_t m = static_cast<int64_t>(s.tris.size());
+  s.position.resize(m);
+  gpu::exclusive_scan(s.keep.data(), s.position.data(), m, s.temp, s.stream);
+  const int64_t kept = s.last_total(s.position, s.keep);
+  s.tris_tmp.resize(kept);
+  s.nbrs_tmp.resize(kept);
+  gpu::launch_compact_triangles(s.tris.span(), s.nbrs.span(), s.keep.span(), s.position.span(),
+                                s.tris_tmp.span(), s.nbrs_tmp.span(), s.stream);
+  triangles.resize(kept);
+  static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
+  s.tris_tmp.download(reinterpret_cast<Tri*>(triangles.data()), s.stream);
   s.sync();
-  triangles.clear();
-  for (size_t t = 0; t < all.size(); ++t)
-    if (keep[t]) triangles.push_back({all[t].v[0], all[t].v[1], all[t].v[2]});
 }
 
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }

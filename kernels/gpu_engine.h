@@ -2,8 +2,10 @@
 //
 // Points, triangles, bars and forces stay on the device for the whole job; the host sees the
 // scalars of each step and the copies it asks for. Triangulations are repaired on the device by
-// parallel Lawson flips; CGAL on the host triangulates from scratch only at the start, after
-// density control or clean-up removed points, and when a repair finds a turned-over triangle.
+// parallel Lawson flips. The first one is built from the initial lattice (initial_triangulation.h)
+// and, after density control or clean-up removed points, the surviving triangles are completed
+// (complete_triangulation.h); CGAL triangulates all points on the host only when those checks
+// fail or a repair finds a turned-over triangle.
 // Device buffers grow and are kept between jobs (the arena): a job no larger than the largest
 // one before allocates nothing. One engine per device; not thread-safe.
 //

@@ -142,6 +142,16 @@ void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
                    DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
                    int32_t round, cudaStream_t stream);
 
+// The boundary of the triangulation (edges with no neighbour): next[a] = b for each such edge
+// a -> b, counted in counters->candidates. Then hull_turns counts in counters->fatal the boundary
+// vertices where it turns right (a reflex corner: the triangles do not cover the convex hull).
+// With one boundary loop, each boundary vertex has one outgoing boundary edge.
+void launch_hull_links(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<int32_t> next, TopologyCounters* counters, cudaStream_t stream);
+void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                       DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> next,
+                       TopologyCounters* counters, cudaStream_t stream);
+
 // keep[t] = fd(centroid) < -geps.
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,
                             double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream);

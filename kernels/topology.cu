@@ -149,6 +149,30 @@ __global__ void relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
   }
 }
 
+__global__ void hull_links(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                           DeviceSpan<int32_t> next, TopologyCounters* counters) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  for (int k = 0; k < 3; ++k) {
+    if (nbrs[t].v[k] >= 0) continue;
+    next[tris[t].v[(k + 1) % 3]] = tris[t].v[(k + 2) % 3];
+    atomicAdd(&counters->candidates, 1);
+  }
+}
+
+__global__ void hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                           DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> next,
+                           TopologyCounters* counters) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  for (int k = 0; k < 3; ++k) {
+    if (nbrs[t].v[k] >= 0) continue;
+    // The triangle lies left of its boundary edge a -> b; at b the boundary goes on to c.
+    const int32_t a = tris[t].v[(k + 1) % 3], b = tris[t].v[(k + 2) % 3], c = next[b];
+    if (orientation_filtered(p[a], p[b], p[c]) < 0) atomicAdd(&counters->fatal, 1);
+  }
+}
+
 __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                 ProgramView fd, double geps, DeviceSpan<uint8_t> keep) {
   const int64_t t = thread_index();
@@ -250,6 +274,21 @@ void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
   if (tris.size == 0) return;
   relink<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, flipped_round, partner, round);
   MESHD_CHECK_LAUNCH("relink");
+}
+
+void launch_hull_links(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
+                       DeviceSpan<int32_t> next, TopologyCounters* counters, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  hull_links<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, next, counters);
+  MESHD_CHECK_LAUNCH("hull_links");
+}
+
+void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                       DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> next,
+                       TopologyCounters* counters, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  hull_turns<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, nbrs, next, counters);
+  MESHD_CHECK_LAUNCH("hull_turns");
 }
 
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine from a bundle of the executables (.gpu/, made by the gpu-bundle tool):
-# the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, the GPU
-# benchmark, and the service on a GPU (its tests, meshd + meshctl end to end, the overhead).
-# Logs go to $OUT (or ./gpu-logs). Usage: scripts/gpu_check.sh [tests|sanitize|bench|service]...
+# the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
+# profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
+# the overhead). Logs go to $OUT (or ./gpu-logs).
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|service]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -24,6 +25,12 @@ for step in "${steps[@]}"; do
           > "$out/sanitizer_$tool.log" 2>&1
         echo "compute-sanitizer $tool: exit $? ($(grep -c 'ERROR SUMMARY: 0' "$out/sanitizer_$tool.log") clean summaries)"
         tail -3 "$out/sanitizer_$tool.log"
+      done ;;
+    profile)
+      # Seconds per phase of the GPU engine at the issue's two sizes (best of 3).
+      req="examples/g1_disk.textproto examples/g2_square_hole.textproto"
+      for n in 20000 1000000; do
+        $run meshbench --backend gpu --repeat 3 --phases --nodes $n $req 2>&1 | tee -a "$out/profile.log"
       done ;;
     bench)
       # G1 and G2 uniform at the issue's sizes, GPU and CPU (all cores) on the same host.

@@ -102,6 +102,7 @@ class Loop {
     // The points moved a little since the last triangulation: triangulate once more so that the
     // result is the Delaunay mesh of its own nodes; from scratch when a repair dropped collapsed
     // boundary slivers since the last full triangulation, which may have left a gap.
+    const auto t_finish = Clock::now();
     triangulate(false);
     if (dropped_since_full_ > 0) triangulate(true);
     engine_.read_points(points_);
@@ -113,6 +114,7 @@ class Loop {
     }
     result.mesh = assemble_mesh(problem_, points_, triangles_);
     result.quality = summarize_quality(result.mesh);
+    s.t_finish = seconds_since(t_finish);
     s.t_total = seconds_since(t0);
     result.stats = s;
     return result;
@@ -129,9 +131,11 @@ class Loop {
   void triangulate(bool full) {
     const auto t = Clock::now();
     const TopologyStats topo = engine_.retriangulate(full);
-    stats_.t_triangulation += seconds_since(t);
+    const double seconds = seconds_since(t);
+    stats_.t_triangulation += seconds;
     ++stats_.retriangulations;
     if (topo.full) {
+      stats_.t_full_triangulation += seconds;
       ++stats_.full_triangulations;
       dropped_since_full_ = 0;
     }

@@ -1,0 +1,101 @@
+#include "core/delaunay/complete_triangulation.h"
+
+#include <unordered_set>
+
+#include "core/delaunay/exact_predicates.h"
+#include "core/delaunay/triangle_neighbors.h"
+
+namespace meshd {
+
+Triangulation complete_triangulation(const std::vector<Vec2>& points,
+                                     std::vector<std::array<int32_t, 3>> partial,
+                                     int32_t always_gap) {
+  const size_t n = points.size();
+  Triangulation out;
+  out.triangles = std::move(partial);
+  if (!triangle_neighbors(out.triangles, n, out.neighbors)) return {};
+
+  // The points that bound a gap: on U's boundary, in no triangle, or among the first
+  // always_gap. U's boundary edges (walls), directed with U on their left.
+  std::vector<char> in_u(n, 0), on_gap(n, 0);
+  std::unordered_set<uint64_t> walls;
+  auto key = [](int32_t from, int32_t to) {
+    return (uint64_t{static_cast<uint32_t>(from)} << 32) | static_cast<uint32_t>(to);
+  };
+  for (size_t t = 0; t < out.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      in_u[out.triangles[t][k]] = 1;
+      if (out.neighbors[t][k] >= 0) continue;
+      const int32_t from = out.triangles[t][(k + 1) % 3], to = out.triangles[t][(k + 2) % 3];
+      on_gap[from] = on_gap[to] = 1;
+      walls.insert(key(from, to));
+    }
+  }
+  std::vector<int32_t> gap_index;
+  std::vector<Vec2> gap_points;
+  for (size_t v = 0; v < n; ++v) {
+    if (v < static_cast<size_t>(always_gap) || !in_u[v] || on_gap[v]) {
+      gap_index.push_back(static_cast<int32_t>(v));
+      gap_points.push_back(points[v]);
+    }
+  }
+  const Triangulation gaps = delaunay_triangulate(gap_points);
+
+  // Which of its triangles fill gaps, found without geometry (gap triangles can be flat along a
+  // lattice line, where no point test is safe): U's boundary edges are edges of this small
+  // triangulation too; the triangle on their right is in a gap, and so is every triangle reached
+  // from one without crossing them, or from a hull edge that does not bound U.
+  const size_t mg = gaps.triangles.size();
+  std::vector<char> in_gap(mg, 0);
+  std::vector<int32_t> stack;
+  int64_t hull_edges = 0, walls_seen = 0;
+  auto global = [&](size_t t, int k) { return gap_index[gaps.triangles[t][k]]; };
+  auto is_wall = [&](size_t t, int k) {
+    const int32_t from = global(t, (k + 1) % 3), to = global(t, (k + 2) % 3);
+    return walls.count(key(from, to)) + walls.count(key(to, from)) > 0;
+  };
+  for (size_t t = 0; t < mg; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int32_t from = global(t, (k + 1) % 3), to = global(t, (k + 2) % 3);
+      const bool u_left = walls.count(key(from, to)) > 0, u_right = walls.count(key(to, from)) > 0;
+      walls_seen += u_left + u_right;
+      hull_edges += gaps.neighbors[t][k] < 0;
+      if ((u_right || (gaps.neighbors[t][k] < 0 && !u_left)) && !in_gap[t]) {
+        in_gap[t] = 1;
+        stack.push_back(static_cast<int32_t>(t));
+      }
+    }
+  }
+  // Every wall is met twice (once from each side) unless it lies on the hull.
+  while (!stack.empty()) {
+    const int32_t t = stack.back();
+    stack.pop_back();
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u_t = gaps.neighbors[t][k];
+      if (u_t < 0 || in_gap[u_t] || is_wall(t, k)) continue;
+      in_gap[u_t] = 1;
+      stack.push_back(u_t);
+    }
+  }
+  int64_t walls_on_hull = 0;
+  for (size_t t = 0; t < mg; ++t)
+    for (int k = 0; k < 3; ++k) walls_on_hull += gaps.neighbors[t][k] < 0 && is_wall(t, k);
+  if (walls_seen != 2 * static_cast<int64_t>(walls.size()) - walls_on_hull) return {};
+  for (size_t t = 0; t < mg; ++t) {
+    if (!in_gap[t]) continue;
+    const auto& g = gaps.triangles[t];
+    if (orientation_sign(gap_points[g[0]], gap_points[g[1]], gap_points[g[2]]) <= 0) return {};
+    out.triangles.push_back({gap_index[g[0]], gap_index[g[1]], gap_index[g[2]]});
+  }
+
+  // A triangulation of N points with H on the hull has 2 N - 2 - H triangles.
+  if (static_cast<int64_t>(out.triangles.size()) != 2 * static_cast<int64_t>(n) - 2 - hull_edges)
+    return {};
+  if (!triangle_neighbors(out.triangles, n, out.neighbors)) return {};
+  int64_t open_edges = 0;
+  for (const auto& nb : out.neighbors) open_edges += (nb[0] < 0) + (nb[1] < 0) + (nb[2] < 0);
+  if (open_edges != hull_edges) return {};
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,33 @@
+// Completion of a partial triangulation into one of the convex hull of all its points, with
+// CGAL on the few points that bound the gaps rather than on all of them.
+//
+// Call U the union of the given triangles. The gaps (the rest of the convex hull: pockets
+// along U's outer boundary, holes in U, the surroundings of points in no triangle) are
+// triangulated by CGAL on the points of U's boundary, the points in no triangle and the first
+// `always_gap` points: a few thousand at a million nodes, where triangulating everything takes
+// about a second. U's boundary edges are edges of that small triangulation when U's triangles
+// are Delaunay; its triangles on their far side, and those reached from there without crossing
+// them, fill the gaps. Where U's triangles are only nearly Delaunay (points that moved since)
+// the checks below usually still pass, and Lawson's flips finish the job.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/vec2.h"
+#include "core/delaunay/delaunay.h"
+
+namespace meshd {
+
+// Returns a triangulation of the convex hull of `points` (#N by 2) that contains every triangle
+// of `partial` (#M by 3, counter-clockwise, non-overlapping), with neighbours (delaunay.h), or an
+// empty one when a check fails (every edge used at most twice and in opposite directions, every
+// boundary edge of U an edge of the gaps' triangulation, 2 N - 2 - H triangles for H hull edges,
+// gap triangles counter-clockwise by exact predicates): the caller then triangulates from
+// scratch. Not Delaunay in general: flip it (lawson_repair.h or the GPU engine's repair).
+Triangulation complete_triangulation(const std::vector<Vec2>& points,
+                                     std::vector<std::array<int32_t, 3>> partial,
+                                     int32_t always_gap);
+
+}  // namespace meshd
