@@ -272,7 +272,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
     switch (terms[i].kind_case()) {
       case v1::SizeTerm::kUniform: {
         const double v = positive(terms[i].uniform().value(), p + ".uniform.value");
-        out.terms.emplace_back(std::in_place_type<UniformSize>, v);
+        out.terms.emplace_back(UniformSize{v});  // braces: clang 14 has no aggregate (v)
         low = high = v;
         break;
       }
