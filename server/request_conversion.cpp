@@ -1,5 +1,6 @@
 #include "server/request_conversion.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,11 +8,14 @@
 #include <numbers>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "core/common/error.h"
+#include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/geometry/polygon_checks.h"
+#include "core/mesh/mesh.h"
 
 namespace meshd {
 namespace {
@@ -77,6 +81,11 @@ bool name_char(char c) {
 
 void check_name(const std::string& name, const std::string& field) {
   const std::string allowed = "; a name is 1 to 64 letters, digits, '_', '-' or '.'";
+  // The output files name the domain's own physical group so; a boundary group may not.
+  if (name == kDomainGroupName) {
+    throw_invalid(field, "\"" + name + "\" is reserved for the domain's own group" + allowed +
+                             ", other than \"" + kDomainGroupName + "\"");
+  }
   if (name.size() > kMaxNameLength) {
     throw_invalid(field, "is " + std::to_string(name.size()) + " characters long" + allowed);
   }
@@ -361,22 +370,113 @@ Params params(const v1::MeshRequest& request) {
 // ---------------------------------------------------------------------------------------------
 // The estimated node count, last: it needs the whole Problem.
 
+// The h0 that aims the request at about `target` nodes, from the estimate `nodes` at its own h0
+// (N scales as 1 / h0^2). At extreme h0 or size values the estimate over- or underflows (h0 =
+// 1e-200 gives inf, 1e300 gives 0); then the estimate at compiled h0 = 1 serves, whose size field
+// compile_problem has scaled to a smallest value of 1 (the request's h0 is that h0 over the
+// field's smallest value). Not finite when even that gives no number.
+double h0_for_nodes(const Problem& problem, const CompiledProblem& compiled, double nodes,
+                    double target) {
+  const double h0 = problem.h0 * std::sqrt(nodes / target);
+  if (std::isfinite(h0) && h0 > 0) return h0;
+  double floor = problem.size.terms.empty() ? 1.0 : std::numeric_limits<double>::infinity();
+  for (const auto& term : problem.size.terms) {
+    const auto* uniform = std::get_if<UniformSize>(&term);
+    floor = std::min(floor, uniform ? uniform->value : std::get<DistanceSize>(term).h_min);
+  }
+  CompiledProblem unit = compiled;
+  unit.h0 = 1.0;
+  return std::sqrt(estimate_node_count(unit) / target) / floor;
+}
+
+std::string nodes_text(double nodes) {
+  return std::isfinite(nodes) ? "about " + approx(nodes) : "more than 1e308";
+}
+
+// The engines draw the first points from a grid over the domain's box, spaced by the finest edge
+// length (compiled h0 = h0 * the size field's smallest value), whatever part of the box the
+// domain fills; the node estimate counts only the part inside. A domain that fills little of its
+// box (two small disks far apart, a 1e4 x 1e-4 strip, whose grid row on the boundary is kept
+// whole) would cost time and memory far beyond max_nodes: the grid may have up to
+// kGridPointsPerNode points per node of the limit.
+constexpr double kGridPointsPerNode = 64;
+
+void check_initial_grid(const Problem& problem, const CompiledProblem& compiled,
+                        const ConversionLimits& limits) {
+  // Columns and rows as make_initial_grid counts them, give or take one each.
+  const double spacing = compiled.h0;
+  const double w = compiled.bbox.max.x - compiled.bbox.min.x;
+  const double hgt = (compiled.bbox.max.y - compiled.bbox.min.y) / (std::sqrt(3.0) / 2);
+  const double grid = (w / spacing + 1.5) * (hgt / spacing + 1.5);
+  const double limit = kGridPointsPerNode * static_cast<double>(limits.max_nodes);
+  if (grid <= limit) return;
+  // The spacing s whose grid is at the limit: (w/s + 1.5)(h/s + 1.5) = limit, a quadratic in
+  // 1/s; h0 scales with s.
+  const double a = w * hgt, b = 1.5 * (w + hgt), c = 2.25 - limit;
+  const double inverse = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+  const double least = problem.h0 / (inverse * spacing);
+  const Box& box = compiled.bbox;
+  throw Error(
+      ErrorCode::kResourceExhausted, "h0",
+      "h0 = " + num(problem.h0) + " spaces the grid of initial points over the domain's box [" +
+          num(box.min.x) + ", " + num(box.max.x) + "] x [" + num(box.min.y) + ", " +
+          num(box.max.y) + "] by " + num(spacing) +
+          " (h0 times the size field's smallest value): " + nodes_text(grid) +
+          " points, more than the limit of " + approx(limit) + " (" + approx(kGridPointsPerNode) +
+          " per node of the node limit); the domain fills little of its box: " +
+          (std::isfinite(least) && least > 0 ? "h0 must be at least about " + approx(least)
+                                             : "raise h0") +
+          ", or mesh its parts one by one");
+}
+
+// Coordinates far from the origin compared with the finest edge lose the resolution that the
+// loop needs: its finite-difference step for the distance gradient, deps * compiled h0
+// (1.5e-8 of an edge), rounds away beyond about 1.3e8 edges from the origin. A unit disk at
+// (2e7, 2e7) meshed at h0 = 0.1 came out with 11 nodes of 300, and no error. Up to kMaxReach
+// edges the step stays above about 10 units in the last place.
+constexpr double kMaxReach = 1e7;
+
+void check_resolution(const Problem& problem, const CompiledProblem& compiled) {
+  const Box& b = compiled.bbox;
+  const double reach =
+      std::max({std::fabs(b.min.x), std::fabs(b.max.x), std::fabs(b.min.y), std::fabs(b.max.y)});
+  if (reach <= kMaxReach * compiled.h0) return;
+  const double least = problem.h0 * reach / (kMaxReach * compiled.h0);
+  throw_invalid("h0", "h0 = " + num(problem.h0) + " is too fine for a domain " + approx(reach) +
+                          " from the origin (its box is [" + num(b.min.x) + ", " + num(b.max.x) +
+                          "] x [" + num(b.min.y) + ", " + num(b.max.y) +
+                          "]): the finest edge, h0 times the size field's smallest value = " +
+                          num(compiled.h0) + ", must be at least " + approx(1 / kMaxReach) +
+                          " times the largest coordinate; move the geometry towards the origin, "
+                          "or h0 must be at least about " +
+                          approx(least));
+}
+
 double check_node_count(const Problem& problem, const ConversionLimits& limits) {
   // Throws on its own for an empty domain, a missing bbox or a fixed point outside.
-  const double nodes = estimate_node_count(problem);
+  const CompiledProblem compiled = compile_problem(problem);
+  const double nodes = estimate_node_count(compiled);
   const double h0 = problem.h0;
   if (!(nodes >= 3)) {
-    throw_invalid("h0", "h0 = " + num(h0) + " gives about " + approx(nodes) +
-                            " nodes; at least 3 are needed: h0 must be at most about " +
-                            approx(h0 * std::sqrt(nodes / 3)));
+    const double most = h0_for_nodes(problem, compiled, nodes, 3);
+    throw_invalid("h0",
+                  "h0 = " + num(h0) + " gives " + nodes_text(nodes) +
+                      " nodes; at least 3 are needed: " +
+                      (std::isfinite(most) && most > 0 ? "h0 must be at most about " + approx(most)
+                                                       : "lower h0 or the size field's values"));
   }
   if (nodes > static_cast<double>(limits.max_nodes)) {
-    throw Error(ErrorCode::kResourceExhausted, "h0",
-                "h0 = " + num(h0) + " gives about " + approx(nodes) +
-                    " nodes, more than the limit of " + std::to_string(limits.max_nodes) +
-                    ": h0 must be at least about " +
-                    approx(h0 * std::sqrt(nodes / static_cast<double>(limits.max_nodes))));
+    const double least =
+        h0_for_nodes(problem, compiled, nodes, static_cast<double>(limits.max_nodes));
+    throw Error(
+        ErrorCode::kResourceExhausted, "h0",
+        "h0 = " + num(h0) + " gives " + nodes_text(nodes) + " nodes, more than the limit of " +
+            std::to_string(limits.max_nodes) + ": " +
+            (std::isfinite(least) && least > 0 ? "h0 must be at least about " + approx(least)
+                                               : "raise h0 or the size field's smallest value"));
   }
+  check_initial_grid(problem, compiled, limits);
+  check_resolution(problem, compiled);
   return nodes;
 }
 

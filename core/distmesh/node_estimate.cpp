@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/common/error.h"
 #include "core/distmesh/compiled_problem.h"
@@ -18,11 +19,21 @@ constexpr double kWorkBudget = 2e7;  // program parameters read, summed over sam
 // integral over the domain of 1 / h(p)^2 dA, by the midpoint rule.
 double inverse_size_integral(const CompiledProblem& c) {
   const double w = c.bbox.max.x - c.bbox.min.x, hgt = c.bbox.max.y - c.bbox.min.y;
+  if (!(w > 0 && hgt > 0 && std::isfinite(w) && std::isfinite(hgt))) {
+    std::ostringstream box;
+    box << "[" << c.bbox.min.x << ", " << c.bbox.max.x << "] x [" << c.bbox.min.y << ", "
+        << c.bbox.max.y << "]";
+    throw_invalid("geometry", "the domain's box (clipped to bbox when one is given) is " +
+                                  box.str() + "; its width and height must be finite and > 0");
+  }
   const double cost = static_cast<double>(c.geometry.params.size() + c.size.shapes.params.size());
   const double samples = std::clamp(kWorkBudget / std::max(cost, 1.0), 64.0 * 64.0, kMaxSamples);
-  const double cell = std::sqrt(w * hgt / samples);
-  const int nx = std::max(1, static_cast<int>(std::ceil(w / cell)));
-  const int ny = std::max(1, static_cast<int>(std::ceil(hgt / cell)));
+  // sqrt(w) sqrt(h) rather than sqrt(w h), which overflows for boxes near the double range; each
+  // side between 1 and `samples` cells, so that a box far longer than wide (a 2.8e14 x 2
+  // rectangle gave 4.7e9 columns) stays within the budget and the counts within int.
+  const double cell = std::sqrt(w) * std::sqrt(hgt) / std::sqrt(samples);
+  const int nx = static_cast<int>(std::clamp(std::ceil(w / cell), 1.0, samples));
+  const int ny = static_cast<int>(std::clamp(std::ceil(hgt / cell), 1.0, samples));
   const double dx = w / nx, dy = hgt / ny;
   double sum = 0.0;
   for (int j = 0; j < ny; ++j) {

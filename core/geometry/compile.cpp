@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
+#include <string>
 #include <type_traits>
 
 #include "core/common/error.h"
@@ -28,8 +30,35 @@ class Emitter {
   }
 
  private:
+  // Transforms fold into the parameters, so that a chain of them can take a valid primitive out
+  // of the range of doubles (two nested scales by 1e300 give an infinite radius) or shrink its
+  // size to 0 (two by 1e-300). And the evaluators square coordinates: beyond kMaxCoordinate the
+  // squares overflow and every distance reads inf (a disk of radius 1e200 looked empty).
+  // `values` are the folded parameters, `sizes` the lengths among them that must stay positive.
+  static constexpr double kMaxCoordinate = 1e150;
+
+  static void check_folded(const Shape& shape, std::initializer_list<double> values,
+                           std::initializer_list<double> sizes = {}) {
+    const std::string rule =
+        "; coordinates and lengths, after the scale factors multiplied and the offsets added "
+        "along its path, must be finite, within +-1e150, and lengths > 0";
+    for (double v : values) {
+      if (std::fabs(v) <= kMaxCoordinate) continue;
+      char shown[32];
+      std::snprintf(shown, sizeof shown, "%g", v);
+      throw_invalid(shape.path, std::string("a coordinate or length of this shape, after the ") +
+                                    "transforms above it, is " + shown + rule);
+    }
+    for (double v : sizes) {
+      if (!(v > 0))
+        throw_invalid(shape.path, "its size, after the transforms above it, is 0" + rule);
+    }
+  }
+
   int push_primitive(const Shape& shape, Op op, std::initializer_list<double> params,
                      const char* kind, std::vector<double> corners = {}) {
+    check_folded(shape, params);
+    for (double v : corners) check_folded(shape, {v});
     PrimitiveInfo info;
     info.name = shape.name.empty() ? kind + std::to_string(++default_index_[kind]) : shape.name;
     info.path = shape.path;
@@ -43,12 +72,14 @@ class Emitter {
 
   int emit_node(const Shape& s, const Circle& c, const Similarity& t) {
     const Vec2 center = apply(t, c.center);
+    check_folded(s, {}, {t.scale * c.radius});
     return push_primitive(s, Op::kCircle, {center.x, center.y, t.scale * c.radius}, "circle");
   }
 
   int emit_node(const Shape& s, const Rectangle& r, const Similarity& t) {
     const Vec2 center = apply(t, 0.5 * (r.min + r.max));
     const double hx = 0.5 * t.scale * (r.max.x - r.min.x), hy = 0.5 * t.scale * (r.max.y - r.min.y);
+    check_folded(s, {}, {hx, hy});
     std::vector<double> corners;
     for (Vec2 v : {r.min, Vec2{r.max.x, r.min.y}, r.max, Vec2{r.min.x, r.max.y}}) {
       const Vec2 w = apply(t, v);
@@ -61,6 +92,7 @@ class Emitter {
 
   int emit_node(const Shape& s, const Ellipse& e, const Similarity& t) {
     const Vec2 center = apply(t, e.center);
+    check_folded(s, {}, {t.scale * e.semi_axis_x, t.scale * e.semi_axis_y});
     return push_primitive(s, Op::kEllipse,
                           {center.x, center.y, t.scale * e.semi_axis_x, t.scale * e.semi_axis_y,
                            std::cos(t.angle), std::sin(t.angle)},
@@ -69,7 +101,7 @@ class Emitter {
 
   int emit_node(const Shape& s, const HalfPlane& h, const Similarity& t) {
     // {n.p <= c} maps to {R n . p' <= scale c + R n . offset}; store the unit normal.
-    const double len = norm(h.normal);
+    const double len = std::hypot(h.normal.x, h.normal.y);  // norm() over- or underflows
     const double cs = std::cos(t.angle), sn = std::sin(t.angle);
     const Vec2 n{(cs * h.normal.x - sn * h.normal.y) / len,
                  (sn * h.normal.x + cs * h.normal.y) / len};
@@ -83,6 +115,7 @@ class Emitter {
     corners.reserve(2 * poly.vertices.size());
     for (Vec2 v : poly.vertices) {
       const Vec2 w = apply(t, v);
+      check_folded(s, {w.x, w.y});
       corners.insert(corners.end(), {w.x, w.y});
     }
     PrimitiveInfo info;

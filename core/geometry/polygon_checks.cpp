@@ -37,8 +37,12 @@ std::string point_text(Vec2 p) {
   return out.str();
 }
 
+// Every message ends with what is allowed.
 [[noreturn]] void fail(const std::string& path, const std::string& message) {
-  throw_invalid(path + ".vertices", message);
+  throw_invalid(path + ".vertices",
+                message +
+                    "; a polygon must be simple: at least 3 distinct vertices, not all on one "
+                    "line, its edges meeting only where neighbours share a vertex");
 }
 
 // ---------------------------------------------------------------------------------------------

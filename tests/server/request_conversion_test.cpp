@@ -8,9 +8,9 @@
 #include <variant>
 #include <vector>
 
+#include "client/request_file.h"
 #include "core/common/error.h"
 #include "core/distmesh/node_estimate.h"
-#include "client/request_file.h"
 
 namespace meshd {
 namespace {
