@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/common/error.h"
+#include "core/common/text_file.h"
 
 namespace meshd::cli {
 

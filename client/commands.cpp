@@ -79,8 +79,11 @@ int follow(grpc::ClientReaderInterface<v1::MeshEvent>& reader, const CliOptions&
           std::printf("wrote %d frames to %s\n", frames->frames(), o.frames_dir.c_str());
       }
     } catch (const Error& e) {
+      // What fails here is the result, a frame or an output file, never the request (an -o
+      // whose path cannot be created throws kInvalidArgument): exit 11, not 2.
       view.end_line();
-      code = report_error(e);
+      std::fprintf(stderr, "meshctl: %s\n", e.what());
+      code = kExitBadResult;
     }
   }
   const grpc::Status status = reader.Finish();

@@ -1,41 +1,18 @@
 #include "client/connection.h"
 
-#include <fstream>
-#include <sstream>
-
-#include "core/common/error.h"
+#include "core/common/text_file.h"
 
 namespace meshd::cli {
-
-namespace {
-
-std::string read_file(const std::string& path, const std::string& flag) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  if (!in || !(s << in.rdbuf())) throw_invalid(flag, "cannot read " + path);
-  return s.str();
-}
-
-}  // namespace
-
-std::string read_first_line(const std::string& path, const std::string& flag) {
-  std::ifstream in(path);
-  std::string line;
-  if (!in || !std::getline(in, line)) throw_invalid(flag, "cannot read " + path);
-  const auto first = line.find_first_not_of(" \t\r");
-  if (first == std::string::npos) throw_invalid(flag, path + " is empty");
-  return line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
-}
 
 Connection::Connection(const ConnectionOptions& options) : options_(options) {
   std::shared_ptr<grpc::ChannelCredentials> credentials;
   grpc::ChannelArguments arguments;
   if (options.tls || !options.tls_ca.empty() || !options.tls_cert.empty()) {
     grpc::SslCredentialsOptions ssl;
-    if (!options.tls_ca.empty()) ssl.pem_root_certs = read_file(options.tls_ca, "--tls-ca");
+    if (!options.tls_ca.empty()) ssl.pem_root_certs = read_text_file(options.tls_ca, "--tls-ca");
     if (!options.tls_cert.empty()) {
-      ssl.pem_cert_chain = read_file(options.tls_cert, "--tls-cert");
-      ssl.pem_private_key = read_file(options.tls_key, "--tls-key");
+      ssl.pem_cert_chain = read_text_file(options.tls_cert, "--tls-cert");
+      ssl.pem_private_key = read_text_file(options.tls_key, "--tls-key");
     }
     credentials = grpc::SslCredentials(ssl);
     if (!options.tls_server_name.empty())

@@ -35,7 +35,4 @@ class Connection {
   std::shared_ptr<grpc::Channel> channel_;
 };
 
-// The first line of a file, trimmed (token files). Throws Error(kInvalidArgument) naming `flag`.
-std::string read_first_line(const std::string& path, const std::string& flag);
-
 }  // namespace meshd::cli

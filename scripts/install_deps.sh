@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian packages meshd builds, tests and runs with, when any is missing.
 # The CUDA toolkit is not installed here: the GPU engine is built only where nvcc exists.
+# --fuzz adds what scripts/fuzz.sh needs (clang and its libFuzzer and sanitizer runtimes), which
+# the normal build does not.
 set -euo pipefail
+fuzz_packages=(clang-14 libclang-rt-14-dev)
 packages=(
   build-essential cmake ninja-build pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev
+  libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev prometheus-cpp-dev libssl-dev
   python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl
 )
+[ "${1:-}" = "--fuzz" ] && packages+=("${fuzz_packages[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,9 +1,5 @@
 #include "server/bearer_token.h"
 
-#include <fstream>
-
-#include "core/common/error.h"
-
 namespace meshd {
 
 namespace {
@@ -32,16 +28,6 @@ grpc::Status BearerToken::check(const grpc::CallbackServerContext& context) cons
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "wrong bearer token");
   }
   return grpc::Status::OK;
-}
-
-std::string read_token_file(const std::string& path, const std::string& flag) {
-  std::ifstream in(path);
-  std::string line;
-  if (!in || !std::getline(in, line)) throw_invalid(flag, "cannot read the token file " + path);
-  const auto first = line.find_first_not_of(" \t\r");
-  const auto last = line.find_last_not_of(" \t\r");
-  if (first == std::string::npos) throw_invalid(flag, "the token file " + path + " is empty");
-  return line.substr(first, last - first + 1);
 }
 
 }  // namespace meshd

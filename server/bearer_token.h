@@ -20,8 +20,4 @@ class BearerToken {
   std::string token_;
 };
 
-// Reads a token file: its first line, without surrounding white space. Throws
-// Error(kInvalidArgument) naming `flag` when the file cannot be read or the token is empty.
-std::string read_token_file(const std::string& path, const std::string& flag);
-
 }  // namespace meshd

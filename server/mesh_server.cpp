@@ -4,30 +4,17 @@
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "core/common/error.h"
+#include "core/common/text_file.h"
 
 namespace meshd {
-
-namespace {
-
-std::string read_file(const std::string& path, const std::string& flag) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  if (!in || !(s << in.rdbuf())) throw_invalid(flag, "cannot read " + path);
-  return s.str();
-}
-
-}  // namespace
 
 MeshServer::MeshServer(ServerOptions options, std::vector<WorkerSpec> workers)
     : options_(std::move(options)) {
   if (workers.empty()) workers = workers_for(options_);
   jobs_ = std::make_unique<JobManager>(options_.jobs, std::move(workers), metrics_);
   const std::string token =
-      options_.token_file.empty() ? "" : read_token_file(options_.token_file, "--token-file");
+      options_.token_file.empty() ? "" : read_first_line(options_.token_file, "--token-file");
   service_ = std::make_unique<MeshService>(*jobs_, metrics_, BearerToken(token));
 }
 
@@ -36,10 +23,10 @@ MeshServer::~MeshServer() { shutdown(std::chrono::milliseconds(0)); }
 std::shared_ptr<grpc::ServerCredentials> MeshServer::credentials() const {
   if (options_.tls_cert.empty()) return grpc::InsecureServerCredentials();
   grpc::SslServerCredentialsOptions ssl;
-  ssl.pem_key_cert_pairs.push_back(
-      {read_file(options_.tls_key, "--tls-key"), read_file(options_.tls_cert, "--tls-cert")});
+  ssl.pem_key_cert_pairs.push_back({read_text_file(options_.tls_key, "--tls-key"),
+                                    read_text_file(options_.tls_cert, "--tls-cert")});
   if (!options_.tls_client_ca.empty()) {
-    ssl.pem_root_certs = read_file(options_.tls_client_ca, "--tls-client-ca");
+    ssl.pem_root_certs = read_text_file(options_.tls_client_ca, "--tls-client-ca");
     ssl.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
   }
   return grpc::SslServerCredentials(ssl);

@@ -272,7 +272,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
     switch (terms[i].kind_case()) {
       case v1::SizeTerm::kUniform: {
         const double v = positive(terms[i].uniform().value(), p + ".uniform.value");
-        out.terms.emplace_back(std::in_place_type<UniformSize>, v);
+        out.terms.emplace_back(UniformSize{v});  // braces: clang 14 has no aggregate (v)
         low = high = v;
         break;
       }
@@ -428,7 +428,11 @@ JobOptions job_options(const v1::JobOptions& in, double estimated_nodes,
 
 }  // namespace
 
-Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits) {
+namespace {
+
+// to_problem, also giving the estimated node count it checked.
+Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
+                double& estimated_nodes) {
   Problem problem;
 
   if (!request.has_geometry()) throw_invalid("geometry", "required: the domain to mesh");
@@ -457,14 +461,20 @@ Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limit
   problem.params = params(request);
   problem.seed = request.seed();
 
-  check_node_count(problem, limits);
+  estimated_nodes = check_node_count(problem, limits);
   return problem;
+}
+
+}  // namespace
+
+Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits) {
+  double estimated_nodes = 0;
+  return convert(request, limits, estimated_nodes);
 }
 
 JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits) {
   JobSpec spec;
-  spec.problem = to_problem(request, limits);
-  spec.estimated_nodes = estimate_node_count(spec.problem);
+  spec.problem = convert(request, limits, spec.estimated_nodes);
   spec.options = job_options(request.options(), spec.estimated_nodes, limits);
   return spec;
 }

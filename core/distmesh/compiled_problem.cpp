@@ -41,6 +41,18 @@ CompiledProblem compile_problem(const Problem& problem) {
   out.geometry = compile_geometry(problem.geometry);
   out.size = compile_size_field(problem.size);
   out.h0 = problem.h0;
+  // The engines read h0 as the finest edge: they space the first points h0 apart and thin them
+  // by (smallest h / h)^2, as distmesh2d.m does. The API means edge = h0 * h(p) (a uniform 0.5
+  // halves the edges). Fold the field's lower bound into h0 so that both agree wherever the
+  // bound is reached (every term reaches it when its shape touches the domain).
+  double floor = out.size.terms.empty() ? 1.0 : INFINITY;
+  for (const SizeTermCode& t : out.size.terms) floor = std::min(floor, t.h_min);
+  out.h0 *= floor;
+  for (SizeTermCode& t : out.size.terms) {
+    t.h_min /= floor;
+    t.slope /= floor;
+    t.h_max /= floor;
+  }
   out.params = problem.params;
   out.seed = problem.seed;
 

@@ -32,8 +32,9 @@ TEST_F(GpuService, JobsRunOnTheBackendTheyAskFor) {
     const auto expected = backend == v1::JobOptions::BACKEND_CPU ? v1::JobOptions::BACKEND_CPU
                                                                  : v1::JobOptions::BACKEND_GPU;
     EXPECT_EQ(r.done.backend(), expected);
-    if (expected == v1::JobOptions::BACKEND_GPU)
+    if (expected == v1::JobOptions::BACKEND_GPU) {
       EXPECT_NE(r.done.device().find("(device 0)"), std::string::npos) << r.done.device();
+    }
   }
   const std::string metrics = server.server().metrics().text();
   EXPECT_NE(metrics.find("meshd_device_memory_bytes{device=\"0\"}"), std::string::npos);

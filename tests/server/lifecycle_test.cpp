@@ -30,23 +30,6 @@ Health::ServingStatus health(const std::string& address) {
   return response.status();
 }
 
-template <typename Predicate>
-bool eventually(Predicate done, std::chrono::milliseconds timeout = 10s) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > until) return false;
-    std::this_thread::sleep_for(5ms);
-  }
-  return true;
-}
-
-v1::MeshRequest endless_request() {
-  v1::MeshRequest r = disk_request(0.03);
-  r.mutable_params()->set_dptol(1e-9);
-  r.mutable_params()->set_max_iterations(1'000'000);
-  return r;
-}
-
 TEST(Lifecycle, HealthServesOnlyAfterWarmUpAndStopsServingOnShutdown) {
   auto gate = std::make_shared<Gate>();
   MeshServer server(test_options(), {{"cpu0", Backend::kCpu, gated_cpu_factory(gate, true)}});

@@ -13,14 +13,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-// A disk that never settles (dptol far below what the nodes reach): it runs until stopped.
-v1::MeshRequest endless_request() {
-  v1::MeshRequest r = disk_request(0.03);
-  r.mutable_params()->set_dptol(1e-9);
-  r.mutable_params()->set_max_iterations(1'000'000);
-  return r;
-}
-
 v1::JobInfo get_job(v1::MeshService::Stub& stub, const std::string& id) {
   v1::JobRef ref;
   ref.set_job_id(id);
@@ -41,17 +33,6 @@ v1::JobInfo wait_for_state(v1::MeshService::Stub& stub, const std::string& id, v
     std::this_thread::sleep_for(5ms);
   } while (std::chrono::steady_clock::now() < until);
   return info;
-}
-
-// Polls `done` until it holds or `timeout` passes; returns its last value.
-template <typename Predicate>
-bool eventually(Predicate done, std::chrono::milliseconds timeout = 5s) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > until) return false;
-    std::this_thread::sleep_for(5ms);
-  }
-  return true;
 }
 
 bool no_live_jobs(TestServer& server) {

@@ -223,6 +223,18 @@ def test_metrics(meshd, state):
 
 # ---- SIGTERM, each on its own meshd --------------------------------------------------------------
 
+def test_reflection(meshd, state):
+    """Server reflection (what grpcurl uses) lists the services. A raw call: the request is
+    list_services = "" (field 7, an empty string); the answer carries the names as strings."""
+    info = meshd.channel.stream_stream(
+        "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo",
+        request_serializer=lambda x: x, response_deserializer=lambda x: x)
+    answers = list(info(iter([b"\x3a\x00"]), timeout=10))
+    assert len(answers) == 1, f"{len(answers)} answers"
+    for name in (b"meshd.v1.MeshService", b"grpc.health.v1.Health"):
+        assert name in answers[0], f"{name.decode()} not listed: {answers[0]!r}"
+
+
 def watch_in_background(meshd, job_id):
     """Opens Watch on `job_id` and returns once the job has started: (events, result, thread).
     `events` keeps filling; `result` gets the final "code" and the "end" time (monotonic)."""
@@ -323,6 +335,7 @@ def main():
             run("submit_watch_getjob_listjobs", test_submit_watch, meshd, state)
             run("bad_requests_name_the_field", test_bad_requests, meshd, state)
             run("metrics_count_jobs", test_metrics, meshd, state)
+            run("reflection_lists_services", test_reflection, meshd, state)
             if failed:
                 raise AssertionError(f"{len(failed)} sub-tests failed")  # prints the log
 

@@ -12,6 +12,13 @@ v1::MeshRequest disk_request(double h0, v1::JobOptions::Backend backend) {
   return request;
 }
 
+v1::MeshRequest endless_request() {
+  v1::MeshRequest r = disk_request(0.03);
+  r.mutable_params()->set_dptol(1e-9);
+  r.mutable_params()->set_max_iterations(1'000'000);
+  return r;
+}
+
 ServerOptions test_options() {
   ServerOptions o;
   o.listen = "127.0.0.1:0";

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "meshd/v1/mesh.pb.h"
@@ -19,6 +20,20 @@ namespace meshd::testing {
 // A unit disk at edge length h0 (about 3.6 / h0^2 nodes), on the given backend.
 v1::MeshRequest disk_request(double h0,
                              v1::JobOptions::Backend backend = v1::JobOptions::BACKEND_AUTO);
+
+// A disk that never settles (dptol far below what the nodes reach): it runs until stopped.
+v1::MeshRequest endless_request();
+
+// Polls `done` until it holds (true) or `timeout` passes (false).
+template <typename Predicate>
+bool eventually(Predicate done, std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
 
 // Server options for tests: port 0, metrics off, short retention and drain.
 ServerOptions test_options();

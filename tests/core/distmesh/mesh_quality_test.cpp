@@ -186,6 +186,38 @@ TEST(GenerateMesh, DeterministicForASeedAndDifferentForAnother) {
   EXPECT_GE(other.result.quality.q_min, 0.65);
 }
 
+// Edge = h0 * h(p) whatever the field's scale: a uniform 0.5 halves the edges (4x the nodes),
+// and a graded field scaled by 0.5 gives the nodes of the unscaled one at h0 / 2.
+TEST(GenerateMesh, SizeFieldScaleIsPartOfTheEdgeLength) {
+  const MeshRun plain = mesh("G1", 1000);
+  const MeshRun halved = mesh("G1", 250, [](Problem& p) {
+    p.size.terms.resize(1);  // a default term is a uniform one
+    std::get<UniformSize>(p.size.terms[0]).value = 0.5;
+  });
+  EXPECT_NEAR(static_cast<double>(halved.result.mesh.points.size()),
+              static_cast<double>(plain.result.mesh.points.size()), 0.05 * 1000);
+  EXPECT_NEAR(halved.compiled.h0, plain.compiled.h0, 1e-12);
+
+  const MeshRun g5 = mesh("G5", 1000);
+  const MeshRun g5_scaled = mesh("G5", 250, [](Problem& p) {
+    for (auto& term : p.size.terms) {
+      std::visit([](auto& t) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(t)>, DistanceSize>) {
+          t.h_min *= 0.5;
+          t.slope *= 0.5;
+          t.h_max *= 0.5;
+        } else {
+          t.value *= 0.5;
+        }
+      }, term);
+    }
+  });
+  EXPECT_NEAR(static_cast<double>(g5_scaled.result.mesh.points.size()),
+              static_cast<double>(g5.result.mesh.points.size()), 0.05 * 1000);
+  EXPECT_NEAR(static_cast<double>(g5_scaled.result.mesh.points.size()),
+              estimate_node_count(g5_scaled.compiled), 0.1 * 1000);
+}
+
 TEST(GenerateMesh, IterationCapStopsUnconvergedWithAValidMesh) {
   const MeshRun run = mesh("G2", 600, [](Problem& p) { p.params.max_iterations = 5; });
   EXPECT_FALSE(run.result.stats.converged);

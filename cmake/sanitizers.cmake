@@ -1,0 +1,15 @@
+# MESHD_SANITIZE: build everything with these sanitizers, e.g. "address,undefined" or "thread"
+# (host code only: configure with -DMESHD_CUDA=OFF). scripts/sanitize.sh drives it.
+set(MESHD_SANITIZE "" CACHE STRING "Sanitizers for every target: address,undefined or thread")
+if(MESHD_SANITIZE)
+  if(MESHD_HAVE_CUDA)
+    message(FATAL_ERROR "MESHD_SANITIZE needs -DMESHD_CUDA=OFF (compute-sanitizer covers kernels)")
+  endif()
+  set(meshd_sanitize_flags -fsanitize=${MESHD_SANITIZE} -fno-omit-frame-pointer -g)
+  if(MESHD_SANITIZE MATCHES "undefined")
+    # A UBSan report fails the test instead of printing and going on.
+    list(APPEND meshd_sanitize_flags -fno-sanitize-recover=undefined)
+  endif()
+  add_compile_options(${meshd_sanitize_flags})
+  add_link_options(-fsanitize=${MESHD_SANITIZE})
+endif()

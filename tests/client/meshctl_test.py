@@ -1,0 +1,269 @@
+#!/usr/bin/env python3
+"""meshctl against a real meshd: every command, its output and its exit code (client/exit_codes.h).
+
+    meshctl_test.py --meshd BIN --meshctl BIN --examples DIR
+
+Starts `meshd --listen 127.0.0.1:0 --backend cpu --queue-capacity 2` and runs the sub-tests
+below against it, one line PASS or FAIL each; the drain sub-test starts a meshd of its own.
+meshio, when the interpreter has it, reads the written .msh and .vtu back.
+
+Exit status: 0 when all pass, 1 on a failure.
+"""
+
+import argparse
+import contextlib
+import io
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from meshd_child import MeshdChild  # noqa: E402
+
+# Exit codes, as client/exit_codes.h defines them.
+OK, BAD_REQUEST, UNAVAILABLE, DEADLINE, CANCELLED, TOO_LARGE, NOT_FOUND = 0, 2, 3, 4, 5, 6, 7
+FAILED_PRECONDITION, NOT_SERVING, BAD_RESULT = 9, 10, 11
+
+# A disk of ~1,400 nodes that never settles (dptol 1e-9): a job that runs until cancelled.
+LONG_REQUEST = """geometry { circle { radius: 1 } }
+h0: 0.05
+params { dptol: 1e-9 max_iterations: 1000000 }
+"""
+
+
+class Context:
+    def __init__(self, args, server, tmp):
+        self.meshd_bin, self.meshctl_bin, self.examples = args.meshd, args.meshctl, args.examples
+        self.server, self.tmp = server, tmp
+        self.long = self.path("long.textproto")
+        with open(self.long, "w") as f:
+            f.write(LONG_REQUEST)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def example(self, name):
+        return os.path.join(self.examples, name)
+
+    def run(self, *argv, server=None, timeout=120):
+        """meshctl ARGV with --server and a default --deadline (a later --deadline wins)."""
+        cmd = [self.meshctl_bin, "--server", server or self.server, "--deadline", "60", *argv]
+        return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=self.tmp)
+
+    def expect(self, code, *argv, **kw):
+        r = self.run(*argv, **kw)
+        assert r.returncode == code, (f"meshctl {' '.join(argv)}: exit {r.returncode}, wanted "
+                                      f"{code}\n  stdout: {r.stdout.strip()}\n  stderr: "
+                                      f"{r.stderr.strip()}")
+        return r
+
+    def wait_state(self, job_id, state, timeout=30, server=None):
+        deadline = time.monotonic() + timeout
+        while True:
+            out = self.expect(OK, "status", job_id, server=server).stdout
+            if f" {state} " in out + " ":
+                return out
+            assert time.monotonic() < deadline, f"{job_id} not {state} after {timeout} s: {out}"
+            time.sleep(0.05)
+
+
+def summary_nodes(stdout):
+    m = re.search(r"nodes (\d+)\s+triangles (\d+)", stdout)
+    assert m, f"no summary in:\n{stdout}"
+    return int(m.group(1))
+
+
+def meshio_nodes(path):
+    try:
+        import meshio
+    except ImportError:
+        return None
+    with contextlib.redirect_stdout(io.StringIO()):  # its MSH reader prints an empty line
+        return len(meshio.read(path).points)
+
+
+# ---- sub-tests -----------------------------------------------------------------------------------
+
+def test_health(c):
+    r = c.expect(OK, "health")
+    assert r.stdout.strip() == "SERVING", r.stdout
+
+
+def test_generate_files(c):
+    r = c.expect(OK, "generate", c.example("g1_disk.textproto"), "-o", "a.msh", "-o", "a.vtu",
+                 "-o", "a.svg")
+    nodes = summary_nodes(r.stdout)
+    for name in ("a.msh", "a.vtu", "a.svg"):
+        assert f"wrote {name}" in r.stdout, r.stdout
+        assert os.path.getsize(c.path(name)) > 0, name
+    with open(c.path("a.svg")) as f:
+        assert "<svg" in f.read(512), "a.svg is no SVG"
+    read = {name: meshio_nodes(c.path(name)) for name in ("a.msh", "a.vtu")}
+    if None not in read.values():
+        assert read == {"a.msh": nodes, "a.vtu": nodes}, f"meshio read {read}, summary {nodes}"
+    print(f"  {nodes} nodes; meshio read back {read}")
+
+
+def test_generate_json(c):
+    r = c.expect(OK, "generate", "--circle", "1", "--h0", "0.1", "--json")
+    events = [json.loads(line) for line in r.stdout.splitlines()]  # every line is JSON
+    assert events and "queued" in events[0], f"first event: {events[:1]}"
+    done = [e["done"] for e in events if "done" in e]
+    assert len(done) == 1 and int(done[0]["nodes"]) > 0, f"done events: {done}"
+    print(f"  {len(events)} events, done with {done[0]['nodes']} nodes")
+
+
+def test_frames(c):
+    r = c.expect(OK, "generate", c.example("g1_disk.textproto"), "--frames", "frames")
+    frames = sorted(f for f in os.listdir(c.path("frames")) if re.fullmatch(r"frame_\d{6}\.svg", f))
+    assert frames, "no frames written"
+    assert f"wrote {len(frames)} frames" in r.stdout, r.stdout
+    print(f"  {len(frames)} frames, {frames[0]} .. {frames[-1]}")
+
+
+def test_bad_request(c):
+    r = c.expect(BAD_REQUEST, "generate", "--circle", "1", "--h0", "-1")
+    assert "h0:" in r.stderr, r.stderr
+
+
+def test_gpu_on_cpu_server(c):
+    r = c.expect(FAILED_PRECONDITION, "generate", "--circle", "1", "--h0", "0.1",
+                 "--backend", "gpu")
+    assert "FAILED_PRECONDITION" in r.stderr, r.stderr
+
+
+def test_too_large(c):
+    r = c.expect(TOO_LARGE, "generate", "--circle", "1", "--h0", "1e-5")
+    assert "RESOURCE_EXHAUSTED" in r.stderr and "h0" in r.stderr, r.stderr
+
+
+def test_submit_watch_status_list(c):
+    job_id = c.expect(OK, "submit", c.example("g1_disk.textproto")).stdout.strip()
+    assert re.fullmatch(r"\S+", job_id), f"submit printed {job_id!r}"
+    c.expect(OK, "watch", job_id, "-o", "x.msh")
+    assert os.path.getsize(c.path("x.msh")) > 0
+    status = c.expect(OK, "status", job_id).stdout
+    assert status.startswith(job_id) and "SUCCEEDED" in status, status
+    listed = [l for l in c.expect(OK, "list").stdout.splitlines() if l.startswith(job_id)]
+    assert len(listed) == 1 and "SUCCEEDED" in listed[0], f"list: {listed}"
+    c.expect(NOT_FOUND, "status", "nope")
+    c.expect(NOT_FOUND, "watch", "nope")
+
+
+def test_queue_full_and_cancel(c):
+    # One CPU worker runs the first long job; --queue-capacity 2 lets two more wait.
+    running = c.expect(OK, "submit", c.long).stdout.strip()
+    c.wait_state(running, "RUNNING")
+    queued = [c.expect(OK, "submit", c.long).stdout.strip() for _ in range(2)]
+    r = c.expect(UNAVAILABLE, "submit", c.long)
+    assert "full" in r.stderr, r.stderr
+    watch = subprocess.Popen([c.meshctl_bin, "--server", c.server, "watch", running],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        time.sleep(0.3)  # let the watch stream start
+        for job_id in [running, *queued]:
+            c.expect(OK, "cancel", job_id)
+        out, err = watch.communicate(timeout=60)
+    finally:
+        watch.kill()
+    assert watch.returncode == CANCELLED, f"watch exit {watch.returncode}, wanted 5: {err}"
+    assert "CANCELLED" in err, err
+    for job_id in [running, *queued]:
+        c.wait_state(job_id, "CANCELLED")
+
+
+def test_deadline(c):
+    t = time.monotonic()
+    r = c.expect(DEADLINE, "generate", c.long, "--deadline", "0.5")
+    assert "DEADLINE_EXCEEDED" in r.stderr, r.stderr
+    assert time.monotonic() - t < 10, "the deadline was not kept"
+    # The server cancels the job of a call whose deadline passed.
+    job_id = re.search(r"job (\S+) queued", r.stderr).group(1)
+    c.wait_state(job_id, "CANCELLED")
+
+
+def test_unreachable(c):
+    r = c.expect(UNAVAILABLE, "health", "--deadline", "5", server="127.0.0.1:1")
+    assert "UNAVAILABLE" in r.stderr, r.stderr
+
+
+def test_command_line(c):
+    r = c.expect(BAD_REQUEST, "generate", "--circle", "1", "--h0", "0.1", "--no-such-flag")
+    assert "--no-such-flag" in r.stderr, r.stderr
+    c.expect(BAD_REQUEST, "frobnicate")
+    c.expect(BAD_REQUEST, "generate")  # no request
+    c.expect(BAD_REQUEST, "status")  # no job id
+    c.expect(BAD_REQUEST, "generate", "--circle", "1", "--h0", "0.1", "-o", "mesh.xyz")
+
+
+def test_output_file_error(c):
+    # The job succeeds, the file cannot be created (its folder is a file): 11, not 2.
+    r = c.expect(BAD_RESULT, "generate", "--circle", "1", "--h0", "0.1", "-o",
+                 os.path.join(c.path("a.svg"), "mesh.msh"))
+    assert "cannot create" in r.stderr, r.stderr
+
+
+def test_help(c):
+    for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
+        r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
+        assert r.returncode == OK, f"meshctl {' '.join(argv)}: exit {r.returncode}"
+        assert wanted in r.stdout, f"meshctl {' '.join(argv)} does not mention {wanted}"
+    assert "meshctl generate examples/" in r.stdout, r.stdout
+
+
+def test_not_serving_while_draining(c):
+    # A meshd of its own: SIGTERM with a job running turns health NOT_SERVING (10) and refuses
+    # new jobs (3) while it drains; cancelling the job lets it exit 0.
+    with MeshdChild(c.meshd_bin, "--drain-timeout", "60") as meshd:
+        job_id = c.expect(OK, "submit", c.long, server=meshd.address).stdout.strip()
+        c.wait_state(job_id, "RUNNING", server=meshd.address)
+        meshd.proc.send_signal(signal.SIGTERM)
+        deadline = time.monotonic() + 10
+        while c.run("health", "--deadline", "2", server=meshd.address).returncode != NOT_SERVING:
+            assert time.monotonic() < deadline, "health never became NOT_SERVING"
+            time.sleep(0.05)
+        c.expect(UNAVAILABLE, "generate", "--circle", "1", "--h0", "0.1", server=meshd.address)
+        c.expect(OK, "cancel", job_id, server=meshd.address)
+        assert meshd.proc.wait(timeout=30) == 0, f"meshd exited {meshd.proc.returncode}"
+
+
+TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test_bad_request,
+         test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
+         test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
+         test_output_file_error, test_help, test_not_serving_while_draining]
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    for flag in ("--meshd", "--meshctl", "--examples"):
+        parser.add_argument(flag, required=True)
+    args = parser.parse_args()
+    # meshctl runs in a temporary folder (its -o files land there).
+    args.meshd, args.meshctl, args.examples = map(os.path.abspath,
+                                                  (args.meshd, args.meshctl, args.examples))
+    failures = []
+    with MeshdChild(args.meshd, "--queue-capacity", "2") as meshd, \
+            tempfile.TemporaryDirectory() as tmp:
+        c = Context(args, meshd.address, tmp)
+        for test in TESTS:
+            t = time.monotonic()
+            try:
+                test(c)
+                print(f"PASS {test.__name__} ({time.monotonic() - t:.1f} s)", flush=True)
+            except (AssertionError, subprocess.TimeoutExpired) as e:
+                failures.append(test.__name__)
+                print(f"FAIL {test.__name__}: {e}", flush=True)
+        if failures:
+            print(f"meshd's log:\n  {meshd.log()}")
+    print(f"{len(failures)} of {len(TESTS)} sub-tests failed: {' '.join(failures)}" if failures
+          else f"all {len(TESTS)} sub-tests passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
