@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "client/request_file.h"
 #include "core/common/error.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
@@ -21,7 +22,6 @@
 #include "core/mesh/mesh_file.h"
 #include "core/mesh/validity.h"
 #include "server/request_conversion.h"
-#include "client/request_file.h"
 #ifdef MESHD_HAVE_CUDA
 #include "kernels/gpu_engine.h"
 #endif
@@ -31,6 +31,7 @@ namespace {
 struct Options {
   std::string backend = "cpu";
   std::string force_sum = "gather";
+  bool lagged_scale = false;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -42,10 +43,11 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
-               "                 [--nodes N] [--repeat R] [--phases]\n"
+               "                 [--lagged-scale] [--nodes N] [--repeat R] [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
+               "  --lagged-scale  the GPU engine's one-pass step: L0 scale from the step before\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  --phases    after the table, one more with the seconds of each phase\n"
@@ -68,6 +70,8 @@ Options parse(int argc, char** argv) {
       o.backend = value();
     else if (a == "--force-sum")
       o.force_sum = value();
+    else if (a == "--lagged-scale")
+      o.lagged_scale = true;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -101,6 +105,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o, me
   if (o.backend == "gpu") {
     auto gpu = std::make_unique<meshd::GpuEngine>(0);
     if (o.force_sum == "atomic") gpu->set_force_sum(meshd::GpuEngine::ForceSum::kAtomic);
+    gpu->set_lagged_scale(o.lagged_scale);
     gpu->warm_up();
     return gpu;
   }

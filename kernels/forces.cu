@@ -19,7 +19,7 @@ struct SumPair {
 struct StepOp {
   __device__ StepSums operator()(StepSums a, StepSums b) const {
     return {fmax(a.max_move, b.max_move), fmax(a.max_drift, b.max_drift), a.sum_sq + b.sum_sq,
-            a.interior + b.interior};
+            a.interior + b.interior, a.bar_l2 + b.bar_l2};
   }
 };
 
@@ -58,13 +58,22 @@ __global__ void move_nodes(MoveArgs a) {
   using Reduce = cub::BlockReduce<StepSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
   const int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
-  StepSums measures{0.0, 0.0, 0.0, 0.0};
+  StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
   if (i < a.p.size) {
     const Vec2 here = a.p[i];
     if (i < a.nfix) {
       a.p_next[i] = here;  // fixed nodes stay exactly where they are
+      // Their bars count towards the lagged scale's sum all the same.
+      double l2 = 0.0;
+      for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1] && a.scattered.size == 0; ++k) {
+        const int32_t e = a.csr_entry[k];
+        const Vec2 other = a.p[(e & 1) ? a.bars[e >> 1].a : a.bars[e >> 1].b];
+        l2 += dot(here - other, here - other);
+      }
+      measures.bar_l2 = l2;
     } else {
       Vec2 total{0.0, 0.0};
+      double l2 = 0.0;
       if (a.scattered.size > 0) {
         total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
       } else {
@@ -78,6 +87,7 @@ __global__ void move_nodes(MoveArgs a) {
           const Vec2 other = a.p[second ? a.bars[b].a : a.bars[b].b];
           const Vec2 v = second ? other - here : here - other;
           const double len = norm(v);
+          l2 += len * len;
           const double h = a.uniform ? 1.0 : a.size[b];
           const double f = fmax(h * scale - len, 0.0);
           const Vec2 fv = len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0};
@@ -92,8 +102,9 @@ __global__ void move_nodes(MoveArgs a) {
       a.on_boundary[i] = d >= -a.near_boundary;
       a.p_next[i] = q;
       const double move2 = dot(step, step);
-      if (d < -a.geps) measures = {sqrt(move2), 0.0, move2, 1.0};
+      if (d < -a.geps) measures = {sqrt(move2), 0.0, move2, 1.0, 0.0};
       measures.max_drift = norm(q - a.p_old[i]);
+      measures.bar_l2 = l2;
     }
   }
   const StepSums total = Reduce(temp).Reduce(measures, StepOp{});
@@ -101,8 +112,8 @@ __global__ void move_nodes(MoveArgs a) {
 }
 
 __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
-                                   DeviceSpan<const double> size, bool uniform,
-                                   const double* scale, DeviceSpan<double> force) {
+                                   DeviceSpan<const double> size, bool uniform, const double* scale,
+                                   DeviceSpan<double> force) {
   const int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
   if (b >= bars.size) return;
   const Bar bar = bars[b];
@@ -118,13 +129,18 @@ __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Ba
   atomicAdd(&force[2 * bar.b + 1], -fv.y);
 }
 
-__global__ void finish_step(DeviceSpan<const StepSums> partial, StepSums* out) {
+__global__ void finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
+                            double fscale, int64_t bars) {
   using Reduce = cub::BlockReduce<StepSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
-  StepSums m{0.0, 0.0, 0.0, 0.0};
+  StepSums m{0.0, 0.0, 0.0, 0.0, 0.0};
   for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x) m = StepOp{}(m, partial[i]);
   const StepSums total = Reduce(temp).Reduce(m, StepOp{});
-  if (threadIdx.x == 0) *out = total;
+  if (threadIdx.x != 0) return;
+  *out = total;
+  // Each bar was measured from both ends.
+  if (next_scale != nullptr && bars > 0)
+    *next_scale = fscale * sqrt(0.5 * total.bar_l2 / static_cast<double>(bars));
 }
 
 __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,
@@ -168,8 +184,9 @@ void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> b
   MESHD_CHECK_LAUNCH("scatter_bar_forces");
 }
 
-void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, cudaStream_t stream) {
-  finish_step<<<1, kBlock, 0, stream>>>(partial, out);
+void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
+                        double fscale, int64_t bars, cudaStream_t stream) {
+  finish_step<<<1, kBlock, 0, stream>>>(partial, out, next_scale, fscale, bars);
   MESHD_CHECK_LAUNCH("finish_step");
 }
 

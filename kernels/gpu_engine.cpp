@@ -138,6 +138,8 @@ struct GpuEngine::Impl {
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
   ForceSum force_sum = ForceSum::kGather;
+  bool lagged_scale = false;
+  bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
   DeviceBuffer<int32_t> csr_offset, csr_entry, key, key_sorted, value, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
@@ -191,6 +193,7 @@ struct GpuEngine::Impl {
                                        cudaMemcpyHostToDevice, stream));
     have_triangulation = false;
     prepared = false;
+    scale_lagged_ok = false;
     bars.resize(0);
     sync();  // fixed_boundary is a stack buffer
   }
@@ -486,6 +489,7 @@ struct GpuEngine::Impl {
       nb = last[0] + last[1];
     }
     bars.resize(nb);
+    scale_lagged_ok = false;
     gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
                            stream);
     // CSR of bar ends by node; the stable sort keeps each node's bars in bar order.
@@ -671,7 +675,9 @@ StepResult GpuEngine::move_points() {
   s.use_device();
   const Params& prm = s.problem->params;
   const double h0 = s.problem->h0;
-  s.measure_bars(false);
+  const bool lagged =
+      s.lagged_scale && s.uniform && s.force_sum == ForceSum::kGather && s.bars.size() > 0;
+  if (!(lagged && s.scale_lagged_ok)) s.measure_bars(false);
   s.step_partial.resize(gpu::blocks_for(s.n));
   s.step_sums.resize(1);
   if (s.force_sum == ForceSum::kAtomic) {
@@ -704,7 +710,10 @@ StepResult GpuEngine::move_points() {
   a.near_boundary = kNearBoundaryRelative * h0;
   a.partial = s.step_partial.span();
   gpu::launch_move_nodes(a, s.stream);
-  gpu::launch_finish_step(s.step_partial.span(), s.step_sums.data(), s.stream);
+  gpu::launch_finish_step(s.step_partial.span(), s.step_sums.data(),
+                          lagged ? s.scale.data() : nullptr, prm.fscale,
+                          static_cast<int64_t>(s.bars.size()), s.stream);
+  s.scale_lagged_ok = lagged;
   MESHD_CUDA_CHECK(cudaMemcpyAsync(s.h_step.get(), s.step_sums.data(), sizeof(gpu::StepSums),
                                    cudaMemcpyDeviceToHost, s.stream));
   s.sync();
@@ -745,6 +754,7 @@ void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
 }
 
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
+void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 
 void GpuEngine::warm_up() {
   Problem disk;

@@ -48,6 +48,12 @@ class GpuEngine final : public Engine {
   enum class ForceSum { kGather, kAtomic };
   void set_force_sum(ForceSum mode);
 
+  // One pass over the nodes per step for a uniform size field: the L0 scale of a step is the
+  // one measured by the step before (the bar lengths one step old), except right after a
+  // triangulation, instead of a pass over the bars first. Off by default: the CPU engine and the
+  // default give the same bits.
+  void set_lagged_scale(bool on);
+
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;

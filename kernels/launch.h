@@ -29,6 +29,7 @@ struct StepSums {
   double max_drift;
   double sum_sq;
   double interior;
+  double bar_l2;  // sum over nodes of their bars' L^2 before the step: 2 sum L^2 (gather only)
 };
 
 struct Tri {
@@ -96,7 +97,10 @@ struct MoveArgs {
 // Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
 void launch_move_nodes(const MoveArgs& args, cudaStream_t stream);
 
-void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, cudaStream_t stream);
+// Sums the partials into *out. With next_scale, also the lagged L0 scale for the next step of a
+// uniform field, fscale * sqrt(sum L^2 / bars), from the lengths that this step measured.
+void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
+                        double fscale, int64_t bars, cudaStream_t stream);
 
 // Step 6: keep[v] = 0 for both non-fixed ends of every bar with L0 > 2 L (keep starts at 1).
 void launch_mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,

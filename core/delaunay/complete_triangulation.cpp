@@ -6,14 +6,20 @@
 #include "core/delaunay/triangle_neighbors.h"
 
 namespace meshd {
+namespace {
 
-Triangulation complete_triangulation(const std::vector<Vec2>& points,
-                                     std::vector<std::array<int32_t, 3>> partial,
-                                     int32_t always_gap) {
+// Retries after a failed check, each without the triangles next to a gap.
+constexpr int kMaxErosions = 2;
+
+// Appends the gaps' triangles to `out` (U's triangles and neighbours) and recomputes the
+// neighbours. Returns false, with `out.triangles` as it came, when a check fails.
+bool fill_gaps(const std::vector<Vec2>& points, int32_t always_gap, Triangulation& out) {
   const size_t n = points.size();
-  Triangulation out;
-  out.triangles = std::move(partial);
-  if (!triangle_neighbors(out.triangles, n, out.neighbors)) return {};
+  const size_t u_count = out.triangles.size();
+  auto fail = [&] {
+    out.triangles.resize(u_count);
+    return false;
+  };
 
   // The points that bound a gap: on U's boundary, in no triangle, or among the first
   // always_gap. U's boundary edges (walls), directed with U on their left.
@@ -31,15 +37,25 @@ Triangulation complete_triangulation(const std::vector<Vec2>& points,
       walls.insert(key(from, to));
     }
   }
-  std::vector<int32_t> gap_index;
+  std::vector<int32_t> gap_index, local(n, -1);
   std::vector<Vec2> gap_points;
   for (size_t v = 0; v < n; ++v) {
     if (v < static_cast<size_t>(always_gap) || !in_u[v] || on_gap[v]) {
+      local[v] = static_cast<int32_t>(gap_index.size());
       gap_index.push_back(static_cast<int32_t>(v));
       gap_points.push_back(points[v]);
     }
   }
-  const Triangulation gaps = delaunay_triangulate(gap_points);
+  // The walls as constraints: a Delaunay edge of U need not be an edge of CGAL's Delaunay
+  // triangulation of the gaps' points when those are co-circular (a hole's boundary nodes all
+  // lie on its circle, and a dropped sliver there leaves walls that are chords of it).
+  std::vector<std::array<int32_t, 2>> constraints;
+  constraints.reserve(walls.size());
+  for (const uint64_t w : walls)
+    constraints.push_back(
+        {local[static_cast<int32_t>(w >> 32)], local[static_cast<int32_t>(w & 0xffffffffu)]});
+  const Triangulation gaps = constrained_delaunay_triangulate(gap_points, constraints);
+  if (gaps.triangles.empty()) return fail();
 
   // Which of its triangles fill gaps, found without geometry (gap triangles can be flat along a
   // lattice line, where no point test is safe): U's boundary edges are edges of this small
@@ -80,22 +96,52 @@ Triangulation complete_triangulation(const std::vector<Vec2>& points,
   int64_t walls_on_hull = 0;
   for (size_t t = 0; t < mg; ++t)
     for (int k = 0; k < 3; ++k) walls_on_hull += gaps.neighbors[t][k] < 0 && is_wall(t, k);
-  if (walls_seen != 2 * static_cast<int64_t>(walls.size()) - walls_on_hull) return {};
+  if (walls_seen != 2 * static_cast<int64_t>(walls.size()) - walls_on_hull) return fail();
   for (size_t t = 0; t < mg; ++t) {
     if (!in_gap[t]) continue;
     const auto& g = gaps.triangles[t];
-    if (orientation_sign(gap_points[g[0]], gap_points[g[1]], gap_points[g[2]]) <= 0) return {};
+    if (orientation_sign(gap_points[g[0]], gap_points[g[1]], gap_points[g[2]]) <= 0) return fail();
     out.triangles.push_back({gap_index[g[0]], gap_index[g[1]], gap_index[g[2]]});
   }
 
   // A triangulation of N points with H on the hull has 2 N - 2 - H triangles.
   if (static_cast<int64_t>(out.triangles.size()) != 2 * static_cast<int64_t>(n) - 2 - hull_edges)
-    return {};
-  if (!triangle_neighbors(out.triangles, n, out.neighbors)) return {};
+    return fail();
+  std::vector<std::array<int32_t, 3>> neighbors;
+  if (!triangle_neighbors(out.triangles, n, neighbors)) return fail();
   int64_t open_edges = 0;
-  for (const auto& nb : out.neighbors) open_edges += (nb[0] < 0) + (nb[1] < 0) + (nb[2] < 0);
-  if (open_edges != hull_edges) return {};
-  return out;
+  for (const auto& nb : neighbors) open_edges += (nb[0] < 0) + (nb[1] < 0) + (nb[2] < 0);
+  if (open_edges != hull_edges) return fail();
+  out.neighbors = std::move(neighbors);
+  return true;
+}
+
+// Removes the triangles of `u` with an edge on its boundary and recomputes the neighbours.
+bool erode(size_t n, Triangulation& u) {
+  size_t kept = 0;
+  for (size_t t = 0; t < u.triangles.size(); ++t) {
+    const auto& nb = u.neighbors[t];
+    if (nb[0] >= 0 && nb[1] >= 0 && nb[2] >= 0) u.triangles[kept++] = u.triangles[t];
+  }
+  u.triangles.resize(kept);
+  return triangle_neighbors(u.triangles, n, u.neighbors);
+}
+
+}  // namespace
+
+Triangulation complete_triangulation(const std::vector<Vec2>& points,
+                                     std::vector<std::array<int32_t, 3>> partial,
+                                     int32_t always_gap) {
+  Triangulation out;
+  out.triangles = std::move(partial);
+  if (!triangle_neighbors(out.triangles, points.size(), out.neighbors)) return {};
+  for (int erosions = 0;; ++erosions) {
+    if (fill_gaps(points, always_gap, out)) return out;
+    // Walls that cross or gaps that fold over: U's triangles along a straight boundary can be
+    // flat, and those dropped when they turned over leave slits whose two sides cross by
+    // rounding. Without the triangles next to every gap, the gaps are wide enough.
+    if (erosions == kMaxErosions || !erode(points.size(), out)) return {};
+  }
 }
 
 }  // namespace meshd

@@ -5,10 +5,14 @@
 // along U's outer boundary, holes in U, the surroundings of points in no triangle) are
 // triangulated by CGAL on the points of U's boundary, the points in no triangle and the first
 // `always_gap` points: a few thousand at a million nodes, where triangulating everything takes
-// about a second. U's boundary edges are edges of that small triangulation when U's triangles
-// are Delaunay; its triangles on their far side, and those reached from there without crossing
-// them, fill the gaps. Where U's triangles are only nearly Delaunay (points that moved since)
-// the checks below usually still pass, and Lawson's flips finish the job.
+// about a second. That triangulation is constrained to contain U's boundary edges (walls): a
+// plain Delaunay one need not, even where U is Delaunay, when the gaps' points are co-circular
+// (a hole's boundary nodes all lie on its circle). Its triangles on the walls' far side, and
+// those reached from there without crossing a wall, fill the gaps. Where U's triangles are only
+// nearly Delaunay (points that moved since) the checks below usually still pass, and Lawson's
+// flips finish the job. Where they fail (walls that cross by rounding where flat triangles along
+// a straight boundary were dropped), the triangles next to the gaps are given up and the gaps
+// filled again, at most twice.
 #pragma once
 
 #include <array>

@@ -1,5 +1,6 @@
 #include "core/delaunay/delaunay.h"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_data_structure_2.h>
@@ -16,17 +17,24 @@ using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int32_t, Kernel>;
 using FaceBase = CGAL::Triangulation_face_base_with_info_2<int32_t, Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+// Crossing constraints throw instead of being split at a constructed intersection point.
+using ConstrainedFaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBase>;
+using ConstrainedTds = CGAL::Triangulation_data_structure_2<VertexBase, ConstrainedFaceBase>;
+using ConstrainedDelaunay =
+    CGAL::Constrained_Delaunay_triangulation_2<Kernel, ConstrainedTds,
+                                               CGAL::No_constraint_intersection_tag>;
 
-}  // namespace
-
-Triangulation delaunay_triangulate(const std::vector<Vec2>& points) {
+std::vector<std::pair<Kernel::Point_2, int32_t>> with_indices(const std::vector<Vec2>& points) {
   std::vector<std::pair<Kernel::Point_2, int32_t>> input;
   input.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i)
     input.emplace_back(Kernel::Point_2(points[i].x, points[i].y), static_cast<int32_t>(i));
-  Delaunay dt;
-  dt.insert(input.begin(), input.end());  // spatially sorted insertion
+  return input;
+}
 
+// The finite faces of `dt` as arrays; overwrites the faces' info.
+template <typename Dt>
+Triangulation to_arrays(Dt& dt) {
   Triangulation out;
   out.triangles.reserve(dt.number_of_faces());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
@@ -40,6 +48,38 @@ Triangulation delaunay_triangulate(const std::vector<Vec2>& points) {
     out.neighbors.push_back(
         {f->neighbor(0)->info(), f->neighbor(1)->info(), f->neighbor(2)->info()});
   return out;
+}
+
+}  // namespace
+
+Triangulation delaunay_triangulate(const std::vector<Vec2>& points) {
+  const auto input = with_indices(points);
+  Delaunay dt;
+  dt.insert(input.begin(), input.end());  // spatially sorted insertion
+  return to_arrays(dt);
+}
+
+Triangulation constrained_delaunay_triangulate(
+    const std::vector<Vec2>& points, const std::vector<std::array<int32_t, 2>>& constraints) {
+  const auto input = with_indices(points);
+  ConstrainedDelaunay cdt;
+  cdt.insert(input.begin(), input.end());
+  std::vector<ConstrainedDelaunay::Vertex_handle> vertex(points.size());
+  std::vector<char> has_vertex(points.size(), 0);
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    vertex[v->info()] = v;
+    has_vertex[v->info()] = 1;
+  }
+  try {
+    for (const auto& c : constraints) {
+      // An end that coincides with another point has no vertex of its own.
+      if (!has_vertex[c[0]] || !has_vertex[c[1]]) return {};
+      cdt.insert_constraint(vertex[c[0]], vertex[c[1]]);
+    }
+  } catch (const ConstrainedDelaunay::Intersection_of_constraints_exception&) {
+    return {};
+  }
+  return to_arrays(cdt);
 }
 
 }  // namespace meshd

@@ -23,6 +23,12 @@ struct Triangulation {
 // Delaunay triangulation of `points` (#N by 2); duplicate points are kept out of the triangles.
 Triangulation delaunay_triangulate(const std::vector<Vec2>& points);
 
+// Constrained Delaunay triangulation of `points` (#N by 2) in which every segment of
+// `constraints` (#C by 2 point indices) is an edge, unless one passes through another point;
+// empty when two constraints cross or an end coincides with another point.
+Triangulation constrained_delaunay_triangulate(
+    const std::vector<Vec2>& points, const std::vector<std::array<int32_t, 2>>& constraints);
+
 // The edges that bound at least one triangle t with keep[t], each once. keep: #M.
 std::vector<std::array<int32_t, 2>> edges_of_kept(const Triangulation& tri,
                                                   const std::vector<char>& keep);

@@ -236,6 +236,25 @@ TEST_P(GpuAgreement, AtomicForceSumsAgreeWithTheGather) {
   EXPECT_GE(whole.quality.q_min, 0.65);
 }
 
+// The one-pass step (L0 scale one step old): the same mesh within the bounds that hold the GPU
+// engine to the CPU engine.
+TEST_P(GpuAgreement, LaggedScaleKeepsTheMesh) {
+  SKIP_WITHOUT_GPU();
+  const std::string id = GetParam();
+  const CompiledProblem c = compiled(id, 20000);
+  GpuEngine exact(0), lagged(0);
+  lagged.set_lagged_scale(true);
+  const MeshResult re = generate_mesh(c, exact, nullptr, nullptr);
+  const MeshResult rl = generate_mesh(c, lagged, nullptr, nullptr);
+  const auto validity = check_validity(rl.mesh);
+  EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
+  EXPECT_NEAR(static_cast<double>(rl.mesh.points.size()),
+              static_cast<double>(re.mesh.points.size()), 0.02 * re.mesh.points.size());
+  EXPECT_NEAR(rl.quality.q_mean, re.quality.q_mean, 0.01);
+  EXPECT_GE(rl.quality.q_min, re.quality.q_min - 0.05);
+  EXPECT_TRUE(rl.stats.converged);
+}
+
 INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement, ::testing::Values("G1", "G2", "G3", "G4", "G5"));
 
 TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
