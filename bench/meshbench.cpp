@@ -100,7 +100,8 @@ Options parse(int argc, char** argv) {
 }
 
 // The engine for --backend; the GPU one warmed up so that start-up stays out of the table.
-std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o, meshd::ThreadPool& pool) {
+std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
+                                           meshd::ThreadPool& pool) {
 #ifdef MESHD_HAVE_CUDA
   if (o.backend == "gpu") {
     auto gpu = std::make_unique<meshd::GpuEngine>(0);
