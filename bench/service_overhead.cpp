@@ -99,9 +99,18 @@ double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, 
   return s;
 }
 
+// When the events of one call through the service arrived, in seconds from the call.
+struct ServiceTiming {
+  double queued = 0;   // admission: the request checked and the job queued
+  double started = 0;  // a worker took the job
+  double done = 0;     // the last event
+  double total = 0;    // the result parsed and checked
+};
+
 // Through the service: Generate, every event read, the result assembled, parsed and checked.
-double through_service(meshd::v1::MeshService::Stub& stub, const meshd::v1::MeshRequest& request,
-                       int64_t& nodes) {
+ServiceTiming through_service(meshd::v1::MeshService::Stub& stub,
+                              const meshd::v1::MeshRequest& request, int64_t& nodes) {
+  ServiceTiming timing;
   const auto t = Clock::now();
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(10));
@@ -110,8 +119,13 @@ double through_service(meshd::v1::MeshService::Stub& stub, const meshd::v1::Mesh
   std::string payload;
   std::string sha;
   while (reader->Read(&event)) {
+    if (event.has_queued()) timing.queued = seconds_since(t);
+    if (event.has_started()) timing.started = seconds_since(t);
     if (event.has_result_chunk()) payload += event.result_chunk().data();
-    if (event.has_done()) sha = event.done().result_sha256();
+    if (event.has_done()) {
+      sha = event.done().result_sha256();
+      timing.done = seconds_since(t);
+    }
   }
   const grpc::Status status = reader->Finish();
   meshd::v1::MeshData mesh;
@@ -120,9 +134,9 @@ double through_service(meshd::v1::MeshService::Stub& stub, const meshd::v1::Mesh
                  status.error_message().c_str());
     std::exit(1);
   }
-  const double s = seconds_since(t);
+  timing.total = seconds_since(t);
   nodes = mesh.points_size() / 2;
-  return s;
+  return timing;
 }
 
 }  // namespace
@@ -146,8 +160,11 @@ int main(int argc, char** argv) {
     const meshd::v1::MeshRequest base = meshd::read_request_file(opt.request);
     std::printf("request %s on %s, median of %d alternating runs each (%d below 10k nodes)\n\n",
                 opt.request.c_str(), engine->device().c_str(), opt.repeat, 5 * opt.repeat);
-    std::printf("| nodes | in process ms | through meshd ms | overhead ms | overhead %% |\n");
-    std::printf("|---|---|---|---|---|\n");
+    // Where the service's time goes: the events' arrival times (medians), from the call.
+    std::printf(
+        "| nodes | in process ms | through meshd ms | overhead ms | overhead %% "
+        "| queued at ms | started at ms | done at ms |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
     for (const double target : opt.nodes) {
       meshd::v1::MeshRequest request = base;
       request.set_h0(meshd::h0_for_node_count(meshd::to_problem(base), target));
@@ -157,13 +174,17 @@ int main(int argc, char** argv) {
       int64_t nodes_a = 0, nodes_b = 0;
       in_process(engine->engine(), request, nodes_a);  // warm both paths at this size
       through_service(*stub, request, nodes_b);
-      std::vector<double> a, b, difference;
+      std::vector<double> a, b, difference, queued, started, done;
       // Small jobs take milliseconds and vary more: more runs.
       const int repeat = nodes_a < 10'000 ? 5 * opt.repeat : opt.repeat;
       for (int r = 0; r < repeat; ++r) {
         a.push_back(in_process(engine->engine(), request, nodes_a));
-        b.push_back(through_service(*stub, request, nodes_b));
+        const ServiceTiming timing = through_service(*stub, request, nodes_b);
+        b.push_back(timing.total);
         difference.push_back(b.back() - a.back());
+        queued.push_back(timing.queued);
+        started.push_back(timing.started);
+        done.push_back(timing.done);
       }
       if (nodes_a != nodes_b) {
         std::fprintf(stderr, "service_overhead: node counts differ (%lld vs %lld)\n",
@@ -171,8 +192,9 @@ int main(int argc, char** argv) {
         return 1;
       }
       const double ma = median(a), mb = median(b), md = median(difference);
-      std::printf("| %lld | %.2f | %.2f | %.2f | %.1f |\n", static_cast<long long>(nodes_a),
-                  1e3 * ma, 1e3 * mb, 1e3 * md, 100 * md / ma);
+      std::printf("| %lld | %.2f | %.2f | %.2f | %.1f | %.2f | %.2f | %.2f |\n",
+                  static_cast<long long>(nodes_a), 1e3 * ma, 1e3 * mb, 1e3 * md, 100 * md / ma,
+                  1e3 * median(queued), 1e3 * median(started), 1e3 * median(done));
       std::fflush(stdout);
     }
     server.shutdown(std::chrono::milliseconds(0));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "core/common/error.h"
 #include "core/distmesh/compiled_problem.h"
@@ -11,12 +12,24 @@
 namespace meshd {
 namespace {
 
-// Up to 400 samples on the longer side of the box (a few percent on smooth domains), fewer when
-// the distance is expensive (long polygons), so that the estimate stays under ~0.1 s.
-constexpr double kMaxSamples = 400.0 * 400.0;
+// The midpoint rule on a coarse grid of cells (up to 100 x 100, fewer when the distance is
+// expensive: long polygons), then each cell where that rule errs is resampled on a kRefine x
+// kRefine grid: cells that the boundary may cross, and cells whose 1/h^2 differs from a
+// neighbour's by more than kSizeStep. Interior cells of a uniform field are exact at one sample,
+// so this reaches the accuracy of a uniform 400 x 400 grid with several times fewer samples (a
+// 1,000-node job spent 1.4 ms of its 8 ms on that grid) and at most its cost.
+constexpr double kMaxCells = 100.0 * 100.0;
+constexpr double kMinCells = 16.0 * 16.0;
+constexpr int kRefine = 4;
+constexpr double kSizeStep = 1.1;
 constexpr double kWorkBudget = 2e7;  // program parameters read, summed over samples
 
-// integral over the domain of 1 / h(p)^2 dA, by the midpoint rule.
+struct CoarseCell {
+  double distance;        // at the centre
+  double inverse_square;  // 1 / h^2 at the centre, 0 outside the domain
+};
+
+// integral over the domain of 1 / h(p)^2 dA.
 double inverse_size_integral(const CompiledProblem& c) {
   const double w = c.bbox.max.x - c.bbox.min.x, hgt = c.bbox.max.y - c.bbox.min.y;
   if (!(w > 0 && hgt > 0 && std::isfinite(w) && std::isfinite(hgt))) {
@@ -27,24 +40,60 @@ double inverse_size_integral(const CompiledProblem& c) {
                                   box.str() + "; its width and height must be finite and > 0");
   }
   const double cost = static_cast<double>(c.geometry.params.size() + c.size.shapes.params.size());
-  const double samples = std::clamp(kWorkBudget / std::max(cost, 1.0), 64.0 * 64.0, kMaxSamples);
+  const double cells =
+      std::clamp(kWorkBudget / (kRefine * kRefine) / std::max(cost, 1.0), kMinCells, kMaxCells);
   // sqrt(w) sqrt(h) rather than sqrt(w h), which overflows for boxes near the double range; each
-  // side between 1 and `samples` cells, so that a box far longer than wide (a 2.8e14 x 2
+  // side between 1 and `cells` cells, so that a box far longer than wide (a 2.8e14 x 2
   // rectangle gave 4.7e9 columns) stays within the budget and the counts within int.
-  const double cell = std::sqrt(w) * std::sqrt(hgt) / std::sqrt(samples);
-  const int nx = static_cast<int>(std::clamp(std::ceil(w / cell), 1.0, samples));
-  const int ny = static_cast<int>(std::clamp(std::ceil(hgt / cell), 1.0, samples));
+  const double cell = std::sqrt(w) * std::sqrt(hgt) / std::sqrt(cells);
+  const int nx = static_cast<int>(std::clamp(std::ceil(w / cell), 1.0, cells));
+  const int ny = static_cast<int>(std::clamp(std::ceil(hgt / cell), 1.0, cells));
   const double dx = w / nx, dy = hgt / ny;
+  const auto sample = [&](double x, double y) {
+    const Vec2 p{x, y};
+    const double d = eval_sdf(c.geometry.view(), p);
+    const double h = d < 0.0 ? eval_size(c.size.view(), p) : 0.0;
+    return CoarseCell{d, d < 0.0 ? 1.0 / (h * h) : 0.0};
+  };
+
+  std::vector<CoarseCell> coarse(static_cast<size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      coarse[static_cast<size_t>(j) * nx + i] =
+          sample(c.bbox.min.x + (i + 0.5) * dx, c.bbox.min.y + (j + 0.5) * dy);
+
+  // The CSG distances never overstate the distance to the boundary: a cell whose centre lies
+  // farther from it than half the cell's diagonal is wholly inside or outside.
+  const double reach = 0.5 * std::hypot(dx, dy);
+  const auto size_changes = [&](const CoarseCell& a, int i, int j) {
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
+    const CoarseCell& b = coarse[static_cast<size_t>(j) * nx + i];
+    if (b.inverse_square == 0.0) return false;
+    const double ratio = a.inverse_square / b.inverse_square;
+    return ratio > kSizeStep || ratio < 1.0 / kSizeStep;
+  };
+  const double sub_x = dx / kRefine, sub_y = dy / kRefine;
   double sum = 0.0;
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      const Vec2 p{c.bbox.min.x + (i + 0.5) * dx, c.bbox.min.y + (j + 0.5) * dy};
-      if (eval_sdf(c.geometry.view(), p) >= 0.0) continue;
-      const double h = eval_size(c.size.view(), p);
-      sum += 1.0 / (h * h);
+      const CoarseCell& a = coarse[static_cast<size_t>(j) * nx + i];
+      const bool boundary = std::fabs(a.distance) <= reach;
+      const bool inside = a.inverse_square > 0.0;
+      const bool refine =
+          boundary || (inside && (size_changes(a, i - 1, j) || size_changes(a, i + 1, j) ||
+                                  size_changes(a, i, j - 1) || size_changes(a, i, j + 1)));
+      if (!refine) {
+        sum += a.inverse_square * dx * dy;
+        continue;
+      }
+      const double x0 = c.bbox.min.x + i * dx, y0 = c.bbox.min.y + j * dy;
+      for (int v = 0; v < kRefine; ++v)
+        for (int u = 0; u < kRefine; ++u)
+          sum +=
+              sample(x0 + (u + 0.5) * sub_x, y0 + (v + 0.5) * sub_y).inverse_square * sub_x * sub_y;
     }
   }
-  return sum * dx * dy;
+  return sum;
 }
 
 }  // namespace
