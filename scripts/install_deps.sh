@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev prometheus-cpp-dev libssl-dev
-  python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl
+  python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl valgrind
 )
 [ "${1:-}" = "--fuzz" ] && packages+=("${fuzz_packages[@]}")
 missing=()

@@ -177,7 +177,7 @@ def main():
               f"{retained:.1f} MB retained results: {growth:+.1f} MB; margin "
               f"{args.rss_margin_mb:.0f} MB)")
         if growth > args.rss_margin_mb:
-            problems.append(f"RSS grew by {growth:.1f} MB beyond the retained results")
+            ml.rss_problem(problems, f"RSS grew by {growth:.1f} MB beyond the retained results")
         channel.close()
         code = meshd.stop()
         if code != 0:

@@ -9,6 +9,7 @@ import_grpc(stubs_dir) returns None when this interpreter has no grpcio (the cal
 service_pb2_grpc are the real modules.
 """
 
+import os
 import re
 import signal
 import subprocess
@@ -18,6 +19,10 @@ import time
 import urllib.request
 
 SKIP = 77
+# Under ASan or TSan (tests/CMakeLists.txt sets MESHD_SANITIZED=1) the sanitizer's allocator
+# keeps freed memory in quarantine and shadow: meshd's RSS then says nothing about the server's
+# own memory, so RSS bounds are reported but not enforced.
+SANITIZED = os.environ.get("MESHD_SANITIZED") == "1"
 grpc = mesh_pb2 = request_pb2 = service_pb2 = service_pb2_grpc = None
 
 
@@ -34,6 +39,14 @@ def import_grpc(stubs_dir):
     from meshd.v1 import mesh_pb2 as m, request_pb2 as r, service_pb2 as s, service_pb2_grpc as g
     grpc, mesh_pb2, request_pb2, service_pb2, service_pb2_grpc = grpc_module, m, r, s, g
     return grpc
+
+
+def rss_problem(problems, text):
+    """Records an RSS bound that was exceeded, or only prints it under a sanitizer."""
+    if SANITIZED:
+        print(f"  not enforced under a sanitizer: {text}")
+    else:
+        problems.append(text)
 
 
 def wait_for(what, predicate, timeout, interval=0.05):

@@ -76,7 +76,7 @@ def main():
               f"{rss_start:.1f} MB, peak {peak:.1f} MB ({peak - rss_start:+.1f} MB; bound "
               f"{args.rss_bound_mb:.0f} MB); samples " + " ".join(f"{s:.0f}" for s in samples))
         if peak > rss_start + args.rss_bound_mb:
-            problems.append(f"RSS grew by {peak - rss_start:.1f} MB while the reader slept")
+            ml.rss_problem(problems, f"RSS grew by {peak - rss_start:.1f} MB while the reader slept")
         if iterations < enough and info.state == S.JOB_STATE_RUNNING:
             problems.append(f"inconclusive: only {iterations} iterations in {slept:.0f} s")
 
