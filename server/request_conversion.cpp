@@ -452,10 +452,29 @@ void check_resolution(const Problem& problem, const CompiledProblem& compiled) {
                           approx(least));
 }
 
+// A domain that is nowhere as thick as its finest edge holds no element of that size: DistMesh
+// gave an empty mesh (fuzzing: a 2 x 6e-5 ellipse at h0 = 1.2e-3). An equilateral triangle of
+// edge h needs an inscribed circle of radius h / (2 sqrt 3), about 0.29 h; the survey finds the
+// depth from below, hence a quarter.
+constexpr double kLeastDepthPerEdge = 0.25;
+
+void check_thickness(const Problem& problem, const CompiledProblem& compiled, double depth) {
+  const double edge = compiled.h0;
+  if (depth >= kLeastDepthPerEdge * edge) return;
+  const double most = problem.h0 * depth / (kLeastDepthPerEdge * edge);
+  throw_invalid("h0", "h0 = " + num(problem.h0) + ": the domain is at most about " +
+                          approx(2 * depth) +
+                          " thick, and its finest edge (h0 times the size "
+                          "field's smallest value) is " +
+                          num(edge) + ": no triangle of that size fits; h0 must be at most about " +
+                          approx(most));
+}
+
 double check_node_count(const Problem& problem, const ConversionLimits& limits) {
   // Throws on its own for an empty domain, a missing bbox or a fixed point outside.
   const CompiledProblem compiled = compile_problem(problem);
-  const double nodes = estimate_node_count(compiled);
+  const DomainSurvey survey = survey_domain(compiled);
+  const double nodes = survey.nodes;
   const double h0 = problem.h0;
   if (!(nodes >= 3)) {
     const double most = h0_for_nodes(problem, compiled, nodes, 3);
@@ -477,6 +496,7 @@ double check_node_count(const Problem& problem, const ConversionLimits& limits) 
   }
   check_initial_grid(problem, compiled, limits);
   check_resolution(problem, compiled);
+  check_thickness(problem, compiled, survey.depth);
   return nodes;
 }
 

@@ -29,8 +29,12 @@ struct CoarseCell {
   double inverse_square;  // 1 / h^2 at the centre, 0 outside the domain
 };
 
-// integral over the domain of 1 / h(p)^2 dA.
-double inverse_size_integral(const CompiledProblem& c) {
+struct Integral {
+  double inverse_size = 0.0;  // integral over the domain of 1 / h(p)^2 dA
+  double depth = 0.0;         // the greatest -distance over the samples inside
+};
+
+Integral integrate_inverse_size(const CompiledProblem& c) {
   const double w = c.bbox.max.x - c.bbox.min.x, hgt = c.bbox.max.y - c.bbox.min.y;
   if (!(w > 0 && hgt > 0 && std::isfinite(w) && std::isfinite(hgt))) {
     std::ostringstream box;
@@ -49,9 +53,11 @@ double inverse_size_integral(const CompiledProblem& c) {
   const int nx = static_cast<int>(std::clamp(std::ceil(w / cell), 1.0, cells));
   const int ny = static_cast<int>(std::clamp(std::ceil(hgt / cell), 1.0, cells));
   const double dx = w / nx, dy = hgt / ny;
+  Integral out;
   const auto sample = [&](double x, double y) {
     const Vec2 p{x, y};
     const double d = eval_sdf(c.geometry.view(), p);
+    out.depth = std::max(out.depth, -d);
     const double h = d < 0.0 ? eval_size(c.size.view(), p) : 0.0;
     return CoarseCell{d, d < 0.0 ? 1.0 / (h * h) : 0.0};
   };
@@ -73,7 +79,7 @@ double inverse_size_integral(const CompiledProblem& c) {
     return ratio > kSizeStep || ratio < 1.0 / kSizeStep;
   };
   const double sub_x = dx / kRefine, sub_y = dy / kRefine;
-  double sum = 0.0;
+  double& sum = out.inverse_size;
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const CoarseCell& a = coarse[static_cast<size_t>(j) * nx + i];
@@ -93,17 +99,19 @@ double inverse_size_integral(const CompiledProblem& c) {
               sample(x0 + (u + 0.5) * sub_x, y0 + (v + 0.5) * sub_y).inverse_square * sub_x * sub_y;
     }
   }
-  return sum;
+  return out;
 }
 
 }  // namespace
 
-double estimate_node_count(const CompiledProblem& problem) {
-  const double integral = inverse_size_integral(problem);
-  if (integral <= 0.0)
+DomainSurvey survey_domain(const CompiledProblem& problem) {
+  const Integral integral = integrate_inverse_size(problem);
+  if (integral.inverse_size <= 0.0)
     throw_invalid("geometry", "the domain is empty or thinner than its box / 400");
-  return 2.0 / std::sqrt(3.0) * integral / (problem.h0 * problem.h0);
+  return {2.0 / std::sqrt(3.0) * integral.inverse_size / (problem.h0 * problem.h0), integral.depth};
 }
+
+double estimate_node_count(const CompiledProblem& problem) { return survey_domain(problem).nodes; }
 
 double estimate_node_count(const Problem& problem) {
   return estimate_node_count(compile_problem(problem));

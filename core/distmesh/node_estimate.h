@@ -13,6 +13,14 @@ double estimate_node_count(const Problem& problem);
 struct CompiledProblem;
 double estimate_node_count(const CompiledProblem& problem);
 
+// What one pass of samples over the domain tells before meshing.
+struct DomainSurvey {
+  double nodes;  // estimate_node_count
+  double depth;  // the greatest distance from the boundary of a sample inside: the domain's
+                 // half-thickness where it is thickest, from below (the CSG distances understate)
+};
+DomainSurvey survey_domain(const CompiledProblem& problem);
+
 // The h0 that aims `problem` at about `nodes` nodes (N scales as 1 / h0^2).
 double h0_for_node_count(const Problem& problem, double nodes);
 

@@ -92,9 +92,12 @@ void run_request_input(const uint8_t* data, size_t size) {
     }
 
     JobSpec spec = to_job_spec(request, fuzz_limits());
-    // Mesh small: time per input decides how much of the space gets explored.
+    // Mesh small: time per input decides how much of the space gets explored. The coarser
+    // request is checked again, as the server would check it (a domain thick enough for the
+    // asked h0 may be too thin for the coarser one).
     if (spec.estimated_nodes > kMeshNodes) {
-      spec.problem.h0 *= std::sqrt(spec.estimated_nodes / kMeshNodes);
+      request.set_h0(request.h0() * std::sqrt(spec.estimated_nodes / kMeshNodes));
+      spec = to_job_spec(request, fuzz_limits());
     }
     const double estimated_nodes = std::min(spec.estimated_nodes, kMeshNodes);
     Params& params = spec.problem.params;

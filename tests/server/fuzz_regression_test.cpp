@@ -17,6 +17,7 @@
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
+#include "core/mesh/validity.h"
 #include "server/request_conversion.h"
 #include "tests/fuzz/request_pipeline.h"
 
@@ -151,6 +152,26 @@ Meshed mesh(const std::string& text) {
   CpuEngine engine(pool);
   m.result = generate_mesh(compiled, engine, nullptr, nullptr);
   return m;
+}
+
+// thinner-than-an-edge: a 4 x 1.2e-4 ellipse at h0 = 1.2e-3, a tenth of an edge thick, was
+// estimated at 300 nodes by its area and meshed to none, "converged". A domain that is nowhere
+// a quarter of its finest edge deep is now refused, with the h0 at which it meshes.
+TEST(FuzzRegression, ThinnerThanAnEdge) {
+  const std::string ellipse =
+      "geometry { ellipse { semi_axis_x: 2.0068359375000466 semi_axis_y: 6.0193240670969317e-05 "
+      "} } h0: ";
+  const Error e = refusal(ellipse + "0.0012036132813494759");
+  EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument) << e.what();
+  EXPECT_EQ(e.field(), "h0");
+  EXPECT_NE(e.detail().find("no triangle of that size fits; h0 must be at most about 0.0002"),
+            std::string::npos)
+      << e.what();
+  // At the h0 it names the ellipse is half an edge across: one row of elements along it (the
+  // area estimate counts twice as many nodes as such a row has).
+  const Meshed m = mesh(ellipse + "0.0002");
+  EXPECT_GT(static_cast<double>(m.result.mesh.triangles.size()), 0.25 * m.spec.estimated_nodes);
+  EXPECT_TRUE(check_validity(m.result.mesh).valid());
 }
 
 // fscale-2: density control removes the points whose bars are shorter than half their target
