@@ -46,12 +46,14 @@ Integral integrate_inverse_size(const CompiledProblem& c) {
   const double cost = static_cast<double>(c.geometry.params.size() + c.size.shapes.params.size());
   const double cells =
       std::clamp(kWorkBudget / (kRefine * kRefine) / std::max(cost, 1.0), kMinCells, kMaxCells);
-  // sqrt(w) sqrt(h) rather than sqrt(w h), which overflows for boxes near the double range; each
-  // side between 1 and `cells` cells, so that a box far longer than wide (a 2.8e14 x 2
-  // rectangle gave 4.7e9 columns) stays within the budget and the counts within int.
-  const double cell = std::sqrt(w) * std::sqrt(hgt) / std::sqrt(cells);
-  const int nx = static_cast<int>(std::clamp(std::ceil(w / cell), 1.0, cells));
-  const int ny = static_cast<int>(std::clamp(std::ceil(hgt / cell), 1.0, cells));
+  // Columns from the box's aspect, rows from what is left of the budget, so that nx * ny stays
+  // within `cells` + nx whatever the box: sqrt(w) / sqrt(h), which neither overflows near the
+  // double range nor underflows for a box of denormal size (a 1e-323 box gave a 0 cell, 1e4 x
+  // 1e4 cells and 1.8 GB); a box far longer than wide (a 2.8e14 x 2 rectangle gave 4.7e9
+  // columns) gets `cells` columns and one row.
+  const double aspect = std::sqrt(w) / std::sqrt(hgt);
+  const int nx = static_cast<int>(std::clamp(std::ceil(std::sqrt(cells) * aspect), 1.0, cells));
+  const int ny = static_cast<int>(std::clamp(std::ceil(cells / nx), 1.0, cells));
   const double dx = w / nx, dy = hgt / ny;
   Integral out;
   const auto sample = [&](double x, double y) {

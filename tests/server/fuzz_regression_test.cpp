@@ -174,6 +174,17 @@ TEST(FuzzRegression, ThinnerThanAnEdge) {
   EXPECT_TRUE(check_validity(m.result.mesh).valid());
 }
 
+// denormal-circle: a circle of radius 5e-324 made the node estimate's cell size underflow to
+// 0, so that it took 1e4 x 1e4 coarse cells: 1.8 GB for one request. Now the estimate's cells
+// stay within its budget and the request is refused as empty.
+TEST(FuzzRegression, DenormalCircle) {
+  const Error e =
+      refusal("geometry { circle { radius: 4.94065645841247e-324 } } h0: 0.54622091293334962");
+  EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument) << e.what();
+  EXPECT_EQ(e.field(), "geometry");
+  EXPECT_NE(e.detail().find("the domain is empty"), std::string::npos) << e.what();
+}
+
 // fscale-2: density control removes the points whose bars are shorter than half their target
 // L0 = fscale * scaled size, so that from fscale ~1.35 on it removes most of them every time:
 // G1 (2,300 nodes) ends with 4 nodes at fscale 1.5 and none at 2, "converged". 1.3 no longer
