@@ -7,6 +7,9 @@
 #
 #   scripts/fuzz.sh [SECONDS]
 #
+# MESHD_FUZZ_SEED=N fixes libFuzzer's random seed (CI does, so that a run it fails repeats here
+# from the same corpus); unset, every run explores differently.
+#
 # The corpus that libFuzzer grows is kept in build-fuzz/fuzz/corpus/ between runs. Reproduce a
 # finding with build-fuzz/bin/request_fuzzer <file>.
 set -euo pipefail
@@ -43,7 +46,8 @@ done
 log=$work/fuzz.log
 status=0
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} timeout --signal=INT --kill-after=30 $((seconds + 10)) \
-  build-fuzz/bin/request_fuzzer -max_total_time="$seconds" -max_len=8192 -timeout=25 \
+  build-fuzz/bin/request_fuzzer -max_total_time="$seconds" -seed="${MESHD_FUZZ_SEED:-0}" \
+  -max_len=8192 -timeout=25 \
   -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$work/artifacts/" \
   "$work/corpus" "$work/seeds" tests/fuzz/corpus >"$log" 2>&1 || status=$?
 
