@@ -38,6 +38,15 @@ MESHD_HD inline InitialGrid make_initial_grid(Box bbox, double h0) {
   g.dy = rows > 0 ? h / static_cast<double>(rows) : row;
   g.nx = cols + 1;
   g.ny = rows + 1;
+  // A box 1.5 to 2.5 rows high: spanning it would put two of its three rows on the boundary,
+  // where a domain that thin (an ellipse two edges across) keeps only the middle row, collinear
+  // points that triangulate to nothing. Its rows keep their spacing and are centred instead.
+  if (rows == 2) {
+    const double intervals = floor(h / row);
+    g.dy = row;
+    g.ny = static_cast<int64_t>(intervals) + 1;
+    g.origin.y = bbox.min.y + 0.5 * (h - intervals * row);
+  }
   return g;
 }
 

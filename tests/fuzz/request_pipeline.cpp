@@ -48,11 +48,7 @@ void check_result(const MeshResult& result, const Params& params, double estimat
     for (const std::string& p : report.problems) problems += "; " + p;
     broken("the mesh fails check_validity" + problems, result);
   }
-  // Open finding (FINDINGS.md, clean-up): the boundary clean-up can remove every node of a
-  // domain one or two elements thick. Known, so not reported again.
-  const bool known_cleanup_finding = result.stats.cleanup_removed > 0;
-  if (estimated_nodes >= kNonEmptyAbove && result.mesh.triangles.empty() &&
-      !known_cleanup_finding) {
+  if (estimated_nodes >= kNonEmptyAbove && result.mesh.triangles.empty()) {
     broken("no triangles from a request estimated at " + std::to_string(estimated_nodes) + " nodes",
            result);
   }

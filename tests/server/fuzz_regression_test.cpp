@@ -199,14 +199,20 @@ TEST(FuzzRegression, DISABLED_FscaleAtTheTopOfItsRangeKeepsTheMesh) {
   }
 }
 
-// cleanup-empties-thin-ellipse: a 4.1 x 0.125 ellipse at h0 0.06 (about 130 nodes, two elements
-// across) relaxes to 62 nodes; the boundary clean-up then finds every triangle a boundary sliver
-// and removes nodes until none is left.
-TEST(FuzzRegression, DISABLED_CleanupKeepsAThinDomain) {
-  const Meshed m = mesh(
-      "geometry { ellipse { semi_axis_x: 2.0539119349977444 semi_axis_y: 0.0625002384185791 } } "
-      "h0: 0.06");
-  EXPECT_GT(m.result.mesh.triangles.size(), 0u);
+// cleanup-empties-thin-ellipse and ellipse-one-row: an ellipse two edges across (4.1 x 0.125 or
+// 1.0 x 0.125 at h0 0.06) is 2.4 grid rows high. The grid spanned the box exactly, so two of its
+// three rows lay on the boundary and only the middle one stayed: collinear points. The long
+// ellipse relaxed to 62 nodes and the clean-up then removed them all; the short one had no
+// triangle from the start, "converged" with no node. Such boxes now get their rows centred.
+TEST(FuzzRegression, EllipseTwoEdgesAcrossMeshes) {
+  for (const char* semi_axis_x : {"2.0539119349977444", "0.50539114988722"}) {
+    const Meshed m = mesh(std::string("geometry { ellipse { semi_axis_x: ") + semi_axis_x +
+                          " semi_axis_y: 0.0625002384185791 } } h0: 0.06");
+    SCOPED_TRACE(semi_axis_x);
+    EXPECT_GT(static_cast<double>(m.result.mesh.points.size()), 0.5 * m.spec.estimated_nodes);
+    EXPECT_GT(m.result.mesh.triangles.size(), m.result.mesh.points.size() / 2);
+    EXPECT_TRUE(check_validity(m.result.mesh).valid());
+  }
 }
 
 // size-floor-not-reached: compile_problem folds the size field's lower bound into h0, and the
