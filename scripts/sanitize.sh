@@ -27,7 +27,8 @@ for step in "${steps[@]}"; do
         -DMESHD_WERROR=ON -DMESHD_SANITIZE=thread
       cmake --build build-tsan -j "$(nproc)" --target server_jobs_test
       TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/sanitizers/tsan.supp" \
-        ctest --test-dir build-tsan --output-on-failure -j "$(nproc)" --repeat until-fail:5 -R '^(JobQueue|JobManager|JobEvents)\.' ;;
+        ctest --test-dir build-tsan --output-on-failure -j "$(nproc)" --repeat until-fail:5 \
+        -R '^(JobQueue|JobManager|JobEvents)\.' ;;
     *) echo "sanitize.sh: unknown step $step (asan, tsan)" >&2; exit 2 ;;
   esac
 done

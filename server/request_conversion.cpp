@@ -462,11 +462,10 @@ void check_thickness(const Problem& problem, const CompiledProblem& compiled, do
   const double edge = compiled.h0;
   if (depth >= kLeastDepthPerEdge * edge) return;
   const double most = problem.h0 * depth / (kLeastDepthPerEdge * edge);
+  const std::string finest = "its finest edge (h0 times the size field's smallest value) is ";
   throw_invalid("h0", "h0 = " + num(problem.h0) + ": the domain is at most about " +
-                          approx(2 * depth) +
-                          " thick, and its finest edge (h0 times the size "
-                          "field's smallest value) is " +
-                          num(edge) + ": no triangle of that size fits; h0 must be at most about " +
+                          approx(2 * depth) + " thick, and " + finest + num(edge) +
+                          ": no triangle of that size fits; h0 must be at most about " +
                           approx(most));
 }
 

@@ -18,6 +18,7 @@ import argparse
 import os
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import threading
@@ -86,7 +87,8 @@ def run_round(address, calls):
 
 def heap_bytes(pid, path):
     """Heap in use now (massif's mem_heap_B + mem_heap_extra_B), from a vgdb snapshot."""
-    os.system(f"vgdb --pid={pid} snapshot {path} >/dev/null 2>&1")
+    subprocess.run(["vgdb", f"--pid={pid}", "snapshot", path], stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL, timeout=120)
     ml.wait_for("massif's snapshot", lambda: os.path.exists(path), 120)
     text = open(path).read()
     heap = int(re.search(r"^mem_heap_B=(\d+)", text, re.M).group(1))
