@@ -66,8 +66,7 @@ __global__ void move_nodes(MoveArgs a) {
       // Their bars count towards the lagged scale's sum all the same.
       double l2 = 0.0;
       for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1] && a.scattered.size == 0; ++k) {
-        const int32_t e = a.csr_entry[k];
-        const Vec2 other = a.p[(e & 1) ? a.bars[e >> 1].a : a.bars[e >> 1].b];
+        const Vec2 other = a.p[a.csr_other[k]];
         l2 += dot(here - other, here - other);
       }
       measures.bar_l2 = l2;
@@ -79,19 +78,15 @@ __global__ void move_nodes(MoveArgs a) {
       } else {
         const double scale = *a.scale;
         for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1]; ++k) {
-          const int32_t e = a.csr_entry[k];
-          const int32_t b = e >> 1;
-          // Only the other end's position is gathered; the bar vector p[a] - p[b] and its
-          // length come out bitwise as measure_bars computed them.
-          const bool second = (e & 1) != 0;
-          const Vec2 other = a.p[second ? a.bars[b].a : a.bars[b].b];
-          const Vec2 v = second ? other - here : here - other;
+          // The vector from the other end: at the bar's second end it is the bar vector
+          // p[a] - p[b] negated, which is exact, so the length and the force come out bitwise
+          // as measure_bars and the CPU engine compute them, with the sign.
+          const Vec2 v = here - a.p[a.csr_other[k]];
           const double len = norm(v);
           l2 += len * len;
-          const double h = a.uniform ? 1.0 : a.size[b];
+          const double h = a.uniform ? 1.0 : a.size[a.csr_entry[k] >> 1];
           const double f = fmax(h * scale - len, 0.0);
-          const Vec2 fv = len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0};
-          total = second ? total - fv : total + fv;
+          total = total + (len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0});
         }
       }
       const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];

@@ -140,7 +140,7 @@ struct GpuEngine::Impl {
   ForceSum force_sum = ForceSum::kGather;
   bool lagged_scale = false;
   bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
-  DeviceBuffer<int32_t> csr_offset, csr_entry, key, key_sorted, value, degree;
+  DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, key, key_sorted, value, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
   DeviceBuffer<gpu::StepSums> step_sums;
@@ -203,22 +203,28 @@ struct GpuEngine::Impl {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
     const int64_t kept = last_total(position, flags);
-    // The triangles untouched by the removal survive, renumbered: the next full triangulation
-    // completes them (complete_triangulation.h) instead of starting over.
-    std::vector<std::array<int32_t, 3>> survivors;
+    // The triangles untouched by the removal survive, renumbered, with their links: the next
+    // full triangulation completes them (complete_triangulation.h) instead of starting over.
+    Triangulation survivors;
     if (have_triangulation) {
-      std::vector<Tri> old_tris(tris.size());
-      std::vector<int32_t> new_index(n);
-      std::vector<uint8_t> node_kept(n);
-      tris.download(old_tris.data(), stream);
-      position.download(new_index.data(), stream);
-      flags.download(node_kept.data(), stream);
+      // keep and count serve as scratch: the next triangulation sets them again.
+      const int64_t m = static_cast<int64_t>(tris.size());
+      keep.resize(m);
+      count.resize(m);
+      gpu::launch_surviving_triangles(tris.span(), flags.span(), keep.span(), stream);
+      gpu::exclusive_scan(keep.data(), count.data(), m, temp, stream);
+      const int64_t alive = last_total(count, keep);
+      tris_tmp.resize(alive);
+      nbrs_tmp.resize(alive);
+      gpu::launch_compact_triangles(tris.span(), nbrs.span(), keep.span(), count.span(),
+                                    tris_tmp.span(), nbrs_tmp.span(), stream);
+      gpu::launch_renumber_vertices(tris_tmp.span(), position.span(), stream);
+      survivors.triangles.resize(alive);
+      survivors.neighbors.resize(alive);
+      static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
+      tris_tmp.download(reinterpret_cast<Tri*>(survivors.triangles.data()), stream);
+      nbrs_tmp.download(reinterpret_cast<Tri*>(survivors.neighbors.data()), stream);
       sync();
-      survivors.reserve(old_tris.size());
-      for (const Tri& t : old_tris) {
-        if (node_kept[t.v[0]] && node_kept[t.v[1]] && node_kept[t.v[2]])
-          survivors.push_back({new_index[t.v[0]], new_index[t.v[1]], new_index[t.v[2]]});
-      }
     }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
@@ -226,14 +232,14 @@ struct GpuEngine::Impl {
     n = kept;
     p.resize(n);
     reset_node_state();
-    if (!survivors.empty()) prepare_completion(std::move(survivors));
+    if (!survivors.triangles.empty()) prepare_completion(std::move(survivors));
     return removed;
   }
 
   // Completes `partial` (triangles of the current nodes) on the host and uploads the result
   // for the next full triangulation; the nodes may have moved since those triangles were made,
   // so the flips check orientations first.
-  void prepare_completion(std::vector<std::array<int32_t, 3>> partial) {
+  void prepare_completion(Triangulation partial) {
     std::vector<Vec2> host(n);
     p.download(host.data(), stream);
     sync();
@@ -497,12 +503,14 @@ struct GpuEngine::Impl {
     key_sorted.resize(2 * nb);
     value.resize(2 * nb);
     csr_entry.resize(2 * nb);
+    csr_other.resize(2 * nb);
     degree.resize(n + 1);
     csr_offset.resize(n + 1);
     MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
     gpu::launch_bar_ends(bars.span(), key.span(), value.span(), degree.span(), stream);
     gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * nb,
                     bits_for(n), temp, stream);
+    gpu::launch_csr_other_ends(bars.span(), csr_entry.span(), csr_other.span(), stream);
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
@@ -614,8 +622,11 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     int64_t flips = s.repair(dropped);
     if (flips >= 0 && !s.covers_hull()) {
       // Close the gaps with CGAL on their boundary points alone, then flip again.
-      std::vector<std::array<int32_t, 3>> partial(s.tris.size());
-      s.tris.download(reinterpret_cast<Tri*>(partial.data()), s.stream);
+      Triangulation partial;
+      partial.triangles.resize(s.tris.size());
+      partial.neighbors.resize(s.nbrs.size());
+      s.tris.download(reinterpret_cast<Tri*>(partial.triangles.data()), s.stream);
+      s.nbrs.download(reinterpret_cast<Tri*>(partial.neighbors.data()), s.stream);
       s.prepare_completion(std::move(partial));
       flips = s.prepared ? s.flip_prepared() : -1;
     }
@@ -696,7 +707,7 @@ StepResult GpuEngine::move_points() {
   a.on_boundary = s.on_boundary.span();
   a.csr_offset = s.csr_offset.span();
   a.csr_entry = s.csr_entry.span();
-  a.bars = s.bars.span();
+  a.csr_other = s.csr_other.span();
   a.size = s.size.span();
   a.uniform = s.uniform;
   a.scattered = s.scattered.span();

@@ -83,9 +83,9 @@ struct MoveArgs {
   DeviceSpan<Vec2> velocity;             // #N, last step (momentum), updated
   DeviceSpan<uint8_t> on_boundary;       // #N, written: near the boundary after the step
   DeviceSpan<const int32_t> csr_offset;  // #N + 1
-  DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end
-  DeviceSpan<const Bar> bars;
-  DeviceSpan<const double> size;  // #B, h at the midpoints; unused when uniform
+  DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end; read only for a graded size field
+  DeviceSpan<const int32_t> csr_other;   // the entry's far end
+  DeviceSpan<const double> size;         // #B, h at the midpoints; unused when uniform
   bool uniform;
   DeviceSpan<const double> scattered;  // #2N summed forces, or empty to gather through the CSR
   const double* scale;
@@ -122,6 +122,12 @@ struct TopologyCounters {
 void launch_check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                               DeviceSpan<const uint8_t> keep, DeviceSpan<const uint8_t> on_boundary,
                               DeviceSpan<uint8_t> alive, TopologyCounters* counters,
+                              cudaStream_t stream);
+// alive[t] = whether all three nodes of triangle t are kept (node_kept: #N).
+void launch_surviving_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const uint8_t> node_kept,
+                                DeviceSpan<uint8_t> alive, cudaStream_t stream);
+// Every vertex v of `tris` becomes new_index[v].
+void launch_renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t> new_index,
                               cudaStream_t stream);
 // Keeps the alive triangles: new index = position[t] (exclusive scan of alive).
 void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
@@ -169,5 +175,9 @@ void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
 // CSR of bars by node: key[2b + e] = bars[b] end e, value = 2b + e; degree counts by node.
 void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
                      DeviceSpan<int32_t> degree, cudaStream_t stream);
+// other[k] = the far end of CSR entry k (bar * 2 + end): the step then gathers a neighbour's
+// position with one dependent load instead of two.
+void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
+                           DeviceSpan<int32_t> other, cudaStream_t stream);
 
 }  // namespace meshd::gpu

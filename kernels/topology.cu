@@ -63,6 +63,20 @@ __global__ void compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const T
   nbrs_out[position[t]] = n;
 }
 
+__global__ void surviving_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const uint8_t> node_kept,
+                                    DeviceSpan<uint8_t> alive) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  const Tri tri = tris[t];
+  alive[t] = node_kept[tri.v[0]] && node_kept[tri.v[1]] && node_kept[tri.v[2]];
+}
+
+__global__ void renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t> new_index) {
+  const int64_t t = thread_index();
+  if (t >= tris.size) return;
+  for (int k = 0; k < 3; ++k) tris[t].v[k] = new_index[tris[t].v[k]];
+}
+
 __global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                 DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
                                 DeviceSpan<int32_t> undecided, TopologyCounters* counters) {
@@ -220,6 +234,14 @@ __global__ void bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key,
   atomicAdd(&degree[bar.b], 1);
 }
 
+__global__ void csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
+                               DeviceSpan<int32_t> other) {
+  const int64_t k = thread_index();
+  if (k >= csr_entry.size) return;
+  const int32_t e = csr_entry[k];
+  other[k] = (e & 1) ? bars[e >> 1].a : bars[e >> 1].b;
+}
+
 }  // namespace
 
 void launch_check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
@@ -240,6 +262,20 @@ void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> 
   compact_triangles<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, alive, position,
                                                                   tris_out, nbrs_out);
   MESHD_CHECK_LAUNCH("compact_triangles");
+}
+
+void launch_surviving_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const uint8_t> node_kept,
+                                DeviceSpan<uint8_t> alive, cudaStream_t stream) {
+  if (tris.size == 0) return;
+  surviving_triangles<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, node_kept, alive);
+  MESHD_CHECK_LAUNCH("surviving_triangles");
+}
+
+void launch_renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t> new_index,
+                              cudaStream_t stream) {
+  if (tris.size == 0) return;
+  renumber_vertices<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, new_index);
+  MESHD_CHECK_LAUNCH("renumber_vertices");
 }
 
 void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
@@ -318,6 +354,13 @@ void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, Device
   if (bars.size == 0) return;
   bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, key, value, degree);
   MESHD_CHECK_LAUNCH("bar_ends");
+}
+
+void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
+                           DeviceSpan<int32_t> other, cudaStream_t stream) {
+  if (csr_entry.size == 0) return;
+  csr_other_ends<<<blocks_for(csr_entry.size), kBlock, 0, stream>>>(bars, csr_entry, other);
+  MESHD_CHECK_LAUNCH("csr_other_ends");
 }
 
 }  // namespace meshd::gpu

@@ -1,6 +1,7 @@
 #include "core/delaunay/complete_triangulation.h"
 
-#include <unordered_set>
+#include <unordered_map>
+#include <utility>
 
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/triangle_neighbors.h"
@@ -11,30 +12,27 @@ namespace {
 // Retries after a failed check, each without the triangles next to a gap.
 constexpr int kMaxErosions = 2;
 
-// Appends the gaps' triangles to `out` (U's triangles and neighbours) and recomputes the
-// neighbours. Returns false, with `out.triangles` as it came, when a check fails.
+// Appends the gaps' triangles to `out` (U's triangles and neighbours) and links them to U and
+// to each other. Returns false, with `out` as it came, when a check fails.
 bool fill_gaps(const std::vector<Vec2>& points, int32_t always_gap, Triangulation& out) {
   const size_t n = points.size();
   const size_t u_count = out.triangles.size();
-  auto fail = [&] {
-    out.triangles.resize(u_count);
-    return false;
-  };
 
   // The points that bound a gap: on U's boundary, in no triangle, or among the first
-  // always_gap. U's boundary edges (walls), directed with U on their left.
+  // always_gap. U's boundary edges (walls), directed with U on their left, each with its use
+  // 3 t + k in U.
   std::vector<char> in_u(n, 0), on_gap(n, 0);
-  std::unordered_set<uint64_t> walls;
+  std::unordered_map<uint64_t, int64_t> walls;
   auto key = [](int32_t from, int32_t to) {
     return (uint64_t{static_cast<uint32_t>(from)} << 32) | static_cast<uint32_t>(to);
   };
-  for (size_t t = 0; t < out.triangles.size(); ++t) {
+  for (size_t t = 0; t < u_count; ++t) {
     for (int k = 0; k < 3; ++k) {
       in_u[out.triangles[t][k]] = 1;
       if (out.neighbors[t][k] >= 0) continue;
       const int32_t from = out.triangles[t][(k + 1) % 3], to = out.triangles[t][(k + 2) % 3];
       on_gap[from] = on_gap[to] = 1;
-      walls.insert(key(from, to));
+      walls.emplace(key(from, to), static_cast<int64_t>(3 * t + k));
     }
   }
   std::vector<int32_t> gap_index, local(n, -1);
@@ -51,11 +49,11 @@ bool fill_gaps(const std::vector<Vec2>& points, int32_t always_gap, Triangulatio
   // lie on its circle, and a dropped sliver there leaves walls that are chords of it).
   std::vector<std::array<int32_t, 2>> constraints;
   constraints.reserve(walls.size());
-  for (const uint64_t w : walls)
-    constraints.push_back(
-        {local[static_cast<int32_t>(w >> 32)], local[static_cast<int32_t>(w & 0xffffffffu)]});
+  for (const auto& w : walls)
+    constraints.push_back({local[static_cast<int32_t>(w.first >> 32)],
+                           local[static_cast<int32_t>(w.first & 0xffffffffu)]});
   const Triangulation gaps = constrained_delaunay_triangulate(gap_points, constraints);
-  if (gaps.triangles.empty()) return fail();
+  if (gaps.triangles.empty()) return false;
 
   // Which of its triangles fill gaps, found without geometry (gap triangles can be flat along a
   // lattice line, where no point test is safe): U's boundary edges are edges of this small
@@ -96,23 +94,54 @@ bool fill_gaps(const std::vector<Vec2>& points, int32_t always_gap, Triangulatio
   int64_t walls_on_hull = 0;
   for (size_t t = 0; t < mg; ++t)
     for (int k = 0; k < 3; ++k) walls_on_hull += gaps.neighbors[t][k] < 0 && is_wall(t, k);
-  if (walls_seen != 2 * static_cast<int64_t>(walls.size()) - walls_on_hull) return fail();
+  if (walls_seen != 2 * static_cast<int64_t>(walls.size()) - walls_on_hull) return false;
+  std::vector<int32_t> new_id(mg, -1);
+  int64_t next_id = static_cast<int64_t>(u_count);
   for (size_t t = 0; t < mg; ++t) {
     if (!in_gap[t]) continue;
     const auto& g = gaps.triangles[t];
-    if (orientation_sign(gap_points[g[0]], gap_points[g[1]], gap_points[g[2]]) <= 0) return fail();
-    out.triangles.push_back({gap_index[g[0]], gap_index[g[1]], gap_index[g[2]]});
+    if (orientation_sign(gap_points[g[0]], gap_points[g[1]], gap_points[g[2]]) <= 0) return false;
+    new_id[t] = static_cast<int32_t>(next_id++);
   }
-
   // A triangulation of N points with H on the hull has 2 N - 2 - H triangles.
-  if (static_cast<int64_t>(out.triangles.size()) != 2 * static_cast<int64_t>(n) - 2 - hull_edges)
-    return fail();
-  std::vector<std::array<int32_t, 3>> neighbors;
-  if (!triangle_neighbors(out.triangles, n, neighbors)) return fail();
-  int64_t open_edges = 0;
-  for (const auto& nb : neighbors) open_edges += (nb[0] < 0) + (nb[1] < 0) + (nb[2] < 0);
-  if (open_edges != hull_edges) return fail();
-  out.neighbors = std::move(neighbors);
+  if (next_id != 2 * static_cast<int64_t>(n) - 2 - hull_edges) return false;
+
+  // The links, without a pass over all triangles. A gap triangle's edge borders another gap
+  // triangle, or is a wall with U on the other side, or lies on the hull. With every triangle
+  // counter-clockwise, U linked consistently and the open edges exactly the hull's, the
+  // triangles cover the hull once: they form a triangulation.
+  std::vector<std::array<int32_t, 3>> gap_neighbors;
+  gap_neighbors.reserve(static_cast<size_t>(next_id) - u_count);
+  std::vector<std::pair<int64_t, int32_t>> wall_links;  // U's use 3 t + k, gap triangle
+  int64_t open_edges = walls_on_hull;
+  for (size_t t = 0; t < mg; ++t) {
+    if (!in_gap[t]) continue;
+    std::array<int32_t, 3> nb{-1, -1, -1};
+    for (int k = 0; k < 3; ++k) {
+      const int32_t from = global(t, (k + 1) % 3), to = global(t, (k + 2) % 3);
+      const int32_t u_t = gaps.neighbors[t][k];
+      if (walls.count(key(from, to)) > 0) return false;  // a gap triangle on U's side
+      const auto wall = walls.find(key(to, from));
+      if (wall != walls.end()) {
+        nb[k] = static_cast<int32_t>(wall->second / 3);
+        wall_links.emplace_back(wall->second, new_id[t]);
+      } else if (u_t >= 0 && in_gap[u_t]) {
+        nb[k] = new_id[u_t];
+      } else if (u_t < 0) {
+        ++open_edges;
+      } else {
+        return false;  // the fill stopped at an edge that is no wall
+      }
+    }
+    gap_neighbors.push_back(nb);
+  }
+  if (open_edges != hull_edges ||
+      static_cast<int64_t>(wall_links.size()) != static_cast<int64_t>(walls.size()) - walls_on_hull)
+    return false;
+  for (size_t t = 0; t < mg; ++t)
+    if (in_gap[t]) out.triangles.push_back({global(t, 0), global(t, 1), global(t, 2)});
+  out.neighbors.insert(out.neighbors.end(), gap_neighbors.begin(), gap_neighbors.end());
+  for (const auto& [use, gap] : wall_links) out.neighbors[use / 3][use % 3] = gap;
   return true;
 }
 
@@ -129,12 +158,9 @@ bool erode(size_t n, Triangulation& u) {
 
 }  // namespace
 
-Triangulation complete_triangulation(const std::vector<Vec2>& points,
-                                     std::vector<std::array<int32_t, 3>> partial,
+Triangulation complete_triangulation(const std::vector<Vec2>& points, Triangulation partial,
                                      int32_t always_gap) {
-  Triangulation out;
-  out.triangles = std::move(partial);
-  if (!triangle_neighbors(out.triangles, points.size(), out.neighbors)) return {};
+  Triangulation out = std::move(partial);
   for (int erosions = 0;; ++erosions) {
     if (fill_gaps(points, always_gap, out)) return out;
     // Walls that cross or gaps that fold over: U's triangles along a straight boundary can be
@@ -142,6 +168,15 @@ Triangulation complete_triangulation(const std::vector<Vec2>& points,
     // rounding. Without the triangles next to every gap, the gaps are wide enough.
     if (erosions == kMaxErosions || !erode(points.size(), out)) return {};
   }
+}
+
+Triangulation complete_triangulation(const std::vector<Vec2>& points,
+                                     std::vector<std::array<int32_t, 3>> partial,
+                                     int32_t always_gap) {
+  Triangulation u;
+  u.triangles = std::move(partial);
+  if (!triangle_neighbors(u.triangles, points.size(), u.neighbors)) return {};
+  return complete_triangulation(points, std::move(u), always_gap);
 }
 
 }  // namespace meshd

@@ -11,7 +11,7 @@ namespace meshd {
 
 // Fills `neighbors` (#M by 3) for `triangles` (#M by 3 point indices in [0, n), all oriented
 // alike). Returns false when some edge is used by more than two triangles or twice in the same
-// direction: the triangles do not form a triangulation. Linear time.
+// direction: the triangles do not form a triangulation. Linear time; at most 2^30 / 3 triangles.
 bool triangle_neighbors(const std::vector<std::array<int32_t, 3>>& triangles, size_t n,
                         std::vector<std::array<int32_t, 3>>& neighbors);
 

@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <random>
 
 #include "core/common/thread_pool.h"
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/lawson_repair.h"
+#include "core/delaunay/triangle_neighbors.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
@@ -69,6 +71,8 @@ class CompletionProbe final : public Engine {
   int removal_attempts = 0, removal_failures = 0, gap_attempts = 0, gap_failures = 0;
   // Completions whose flips met a turned-over triangle.
   int flip_failures = 0;
+  // Completions whose neighbours differ from those found from scratch.
+  int link_errors = 0;
 
  private:
   // `before`: the nodes just before the removal; the kept ones are still in order after it.
@@ -79,11 +83,22 @@ class CompletionProbe final : public Engine {
     for (size_t i = 0, j = 0; i < before.size() && j < after.size(); ++i)
       if (before[i].x == after[j].x && before[i].y == after[j].y)
         new_index[i] = static_cast<int32_t>(j++);
-    survivors_.clear();
+    // The survivors keep their links, as the GPU engine's do (-1 where a triangle went).
+    survivors_ = Triangulation{};
     if (have_) {
-      for (const auto& t : tri_.triangles) {
-        if (new_index[t[0]] >= 0 && new_index[t[1]] >= 0 && new_index[t[2]] >= 0)
-          survivors_.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+      std::vector<int32_t> new_triangle(tri_.triangles.size(), -1);
+      for (size_t t = 0; t < tri_.triangles.size(); ++t) {
+        const auto& v = tri_.triangles[t];
+        if (new_index[v[0]] < 0 || new_index[v[1]] < 0 || new_index[v[2]] < 0) continue;
+        new_triangle[t] = static_cast<int32_t>(survivors_.triangles.size());
+        survivors_.triangles.push_back({new_index[v[0]], new_index[v[1]], new_index[v[2]]});
+      }
+      for (size_t t = 0; t < tri_.triangles.size(); ++t) {
+        if (new_triangle[t] < 0) continue;
+        std::array<int32_t, 3> nb{};
+        for (int k = 0; k < 3; ++k)
+          nb[k] = tri_.neighbors[t][k] < 0 ? -1 : new_triangle[tri_.neighbors[t][k]];
+        survivors_.neighbors.push_back(nb);
       }
     }
     have_ = false;
@@ -119,8 +134,7 @@ class CompletionProbe final : public Engine {
 
   // Completes `partial`, then flips it to Delaunay as flip_prepared does: any triangle turned
   // over fails. Returns whether both worked; tri_ is CGAL's otherwise.
-  bool complete_and_flip(const std::vector<Vec2>& p, std::vector<std::array<int32_t, 3>> partial,
-                         int& failures) {
+  bool complete_and_flip(const std::vector<Vec2>& p, Triangulation partial, int& failures) {
     tri_ = complete_triangulation(p, std::move(partial),
                                   static_cast<int32_t>(problem_->fixed_points.size()));
     if (tri_.triangles.empty()) {
@@ -128,6 +142,10 @@ class CompletionProbe final : public Engine {
       tri_ = delaunay_triangulate(p);
       return false;
     }
+    // The links the completion made, against those of its triangles found from scratch.
+    std::vector<std::array<int32_t, 3>> links;
+    if (!triangle_neighbors(tri_.triangles, p.size(), links) || links != tri_.neighbors)
+      ++link_errors;
     const std::vector<char> keep(tri_.triangles.size(), 1), none(p.size(), 0);
     if (!lawson_repair(p, keep, none, tri_).ok) {
       ++flip_failures;
@@ -141,16 +159,16 @@ class CompletionProbe final : public Engine {
     const std::vector<char> on_boundary = near_boundary(p);
     if (!full) {
       if (!lawson_repair(p, keep_, on_boundary, tri_).ok) tri_ = delaunay_triangulate(p);
-    } else if (!survivors_.empty()) {
+    } else if (!survivors_.triangles.empty()) {
       ++removal_attempts;
       complete_and_flip(p, std::move(survivors_), removal_failures);
-      survivors_.clear();
+      survivors_ = Triangulation{};
     } else if (have_) {
       if (!lawson_repair(p, keep_, on_boundary, tri_).ok) {
         tri_ = delaunay_triangulate(p);
       } else if (!covers_hull(p)) {
         ++gap_attempts;
-        complete_and_flip(p, tri_.triangles, gap_failures);
+        complete_and_flip(p, tri_, gap_failures);
       }
     } else {
       tri_ = delaunay_triangulate(p);
@@ -170,8 +188,55 @@ class CompletionProbe final : public Engine {
   bool have_ = false;
   Triangulation tri_;
   std::vector<char> keep_;
-  std::vector<std::array<int32_t, 3>> survivors_;
+  Triangulation survivors_;
 };
+
+// Random removals from a jittered lattice, the survivors completed with the links they keep:
+// the result covers the hull, every triangle counter-clockwise, and its links are those found
+// from scratch.
+TEST(CompleteTriangulationLinks, RandomRemovalsKeepValidLinks) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  std::vector<Vec2> points;
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 60; ++x)
+      points.push_back({x + 0.5 * (y & 1) + jitter(rng), 0.866 * y + jitter(rng)});
+  const Triangulation full = delaunay_triangulate(points);
+  for (int trial = 0; trial < 20; ++trial) {
+    // Up to 5% of the nodes, sometimes next to each other (merged cavities), hull included.
+    std::vector<int32_t> new_index(points.size());
+    std::vector<Vec2> kept;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const bool gone = static_cast<int>(rng() % 100) < trial / 4 + 1;
+      new_index[i] = gone ? -1 : static_cast<int32_t>(kept.size());
+      if (!gone) kept.push_back(points[i]);
+    }
+    Triangulation survivors;
+    std::vector<int32_t> new_triangle(full.triangles.size(), -1);
+    for (size_t t = 0; t < full.triangles.size(); ++t) {
+      const auto& v = full.triangles[t];
+      if (new_index[v[0]] < 0 || new_index[v[1]] < 0 || new_index[v[2]] < 0) continue;
+      new_triangle[t] = static_cast<int32_t>(survivors.triangles.size());
+      survivors.triangles.push_back({new_index[v[0]], new_index[v[1]], new_index[v[2]]});
+    }
+    for (size_t t = 0; t < full.triangles.size(); ++t) {
+      if (new_triangle[t] < 0) continue;
+      std::array<int32_t, 3> nb{};
+      for (int k = 0; k < 3; ++k)
+        nb[k] = full.neighbors[t][k] < 0 ? -1 : new_triangle[full.neighbors[t][k]];
+      survivors.neighbors.push_back(nb);
+    }
+    const Triangulation done = complete_triangulation(kept, std::move(survivors), 0);
+    ASSERT_FALSE(done.triangles.empty()) << "trial " << trial;
+    const size_t hull = delaunay_triangulate(kept).triangles.size();
+    EXPECT_EQ(done.triangles.size(), hull) << "trial " << trial;
+    for (const auto& v : done.triangles)
+      ASSERT_GT(orientation_sign(kept[v[0]], kept[v[1]], kept[v[2]]), 0) << "trial " << trial;
+    std::vector<std::array<int32_t, 3>> links;
+    ASSERT_TRUE(triangle_neighbors(done.triangles, kept.size(), links)) << "trial " << trial;
+    EXPECT_EQ(links, done.neighbors) << "trial " << trial;
+  }
+}
 
 class CompleteTriangulation : public ::testing::TestWithParam<std::pair<std::string, double>> {};
 
@@ -190,6 +255,8 @@ TEST_P(CompleteTriangulation, CompletesAfterEveryRemovalOfARun) {
   EXPECT_EQ(probe.gap_failures, 0)
       << what << ": " << probe.gap_failures << " of " << probe.gap_attempts;
   EXPECT_EQ(probe.flip_failures, 0) << what;
+  EXPECT_EQ(probe.link_errors, 0) << what;
+  EXPECT_GT(probe.removal_attempts + probe.gap_attempts, 0) << what << ": nothing completed";
   std::printf("%s: completions after removal %d (%d failed), of gaps %d (%d failed)\n",
               what.c_str(), probe.removal_attempts, probe.removal_failures, probe.gap_attempts,
               probe.gap_failures);
