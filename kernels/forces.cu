@@ -23,29 +23,38 @@ struct StepOp {
   }
 };
 
-__global__ void measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
-                             bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
-                             DeviceSpan<BarSums> partial) {
+// Uniform is a template parameter: without the size evaluator the kernel fits 32 registers and
+// eight blocks per SM, so that its kMaxReduceBlocks blocks run as one wave.
+template <bool kUniform>
+__global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
+    measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
+                 DeviceSpan<double> length, DeviceSpan<double> size, DeviceSpan<BarSums> partial) {
   // length and size are written only where given (size > 0): the step needs the sizes of a
   // graded field, density control needs both.
   using Reduce = cub::BlockReduce<BarSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
-  const int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
   BarSums sums{0.0, 0.0};
-  if (b < bars.size) {
+  const int64_t stride = static_cast<int64_t>(gridDim.x) * blockDim.x;
+  for (int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; b < bars.size;
+       b += stride) {
     const Vec2 a = p[bars[b].a], e = p[bars[b].b];
     const double len = norm(a - e);
-    const double h = uniform ? 1.0 : eval_size(fh, 0.5 * (a + e));
+    double h = 1.0;
+    if constexpr (!kUniform) h = eval_size(fh, 0.5 * (a + e));
     if (length.size > 0) length[b] = len;
     if (size.size > 0) size[b] = h;
-    sums = {len * len, h * h};
+    sums = SumPair{}(sums, {len * len, h * h});
   }
   const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
   if (threadIdx.x == 0) partial[blockIdx.x] = total;
 }
 
+// The one-block kernels that sum the partials run 1024 threads: each reads a few partials, where
+// 256 threads each read a dozen one after the other.
+constexpr int kFinishBlock = 1024;
+
 __global__ void finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale) {
-  using Reduce = cub::BlockReduce<BarSums, kBlock>;
+  using Reduce = cub::BlockReduce<BarSums, kFinishBlock>;
   __shared__ typename Reduce::TempStorage temp;
   BarSums sums{0.0, 0.0};
   for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x)
@@ -54,54 +63,66 @@ __global__ void finish_scale(DeviceSpan<const BarSums> partial, double fscale, d
   if (threadIdx.x == 0) *scale = total.h2 > 0.0 ? fscale * sqrt(total.l2 / total.h2) : 0.0;
 }
 
-__global__ void move_nodes(MoveArgs a) {
-  using Reduce = cub::BlockReduce<StepSums, kBlock>;
-  __shared__ typename Reduce::TempStorage temp;
-  const int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
-  StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
-  if (i < a.p.size) {
-    const Vec2 here = a.p[i];
-    if (i < a.nfix) {
-      a.p_next[i] = here;  // fixed nodes stay exactly where they are
-      // Their bars count towards the lagged scale's sum all the same.
-      double l2 = 0.0;
-      for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1] && a.scattered.size == 0; ++k) {
-        const Vec2 other = a.p[a.csr_other[k]];
-        l2 += dot(here - other, here - other);
-      }
-      measures.bar_l2 = l2;
-    } else {
-      Vec2 total{0.0, 0.0};
-      double l2 = 0.0;
-      if (a.scattered.size > 0) {
-        total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
-      } else {
-        const double scale = *a.scale;
-        for (int32_t k = a.csr_offset[i]; k < a.csr_offset[i + 1]; ++k) {
-          // The vector from the other end: at the bar's second end it is the bar vector
-          // p[a] - p[b] negated, which is exact, so the length and the force come out bitwise
-          // as measure_bars and the CPU engine compute them, with the sign.
-          const Vec2 v = here - a.p[a.csr_other[k]];
-          const double len = norm(v);
-          l2 += len * len;
-          const double h = a.uniform ? 1.0 : a.size[a.csr_entry[k] >> 1];
-          const double f = fmax(h * scale - len, 0.0);
-          total = total + (len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0});
-        }
-      }
-      const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];
-      a.velocity[i] = step;
-      Vec2 q = here + step;
-      const double d = eval_sdf(a.fd, q);
-      if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
-      a.on_boundary[i] = d >= -a.near_boundary;
-      a.p_next[i] = q;
-      const double move2 = dot(step, step);
-      if (d < -a.geps) measures = {sqrt(move2), 0.0, move2, 1.0, 0.0};
-      measures.max_drift = norm(q - a.p_old[i]);
-      measures.bar_l2 = l2;
+// Gathers the far ends of CSR entries [k, end) a few at a time: their loads are independent, and
+// issuing them together hides the latency that one load after the other would expose.
+constexpr int kGatherBatch = 4;
+
+// The measures of node i's step (StepOp's identity for a fixed node but its bars' L^2).
+__device__ StepSums move_node(const MoveArgs& a, int64_t i) {
+  const Vec2 here = a.p[i];
+  const bool gather = a.scattered.size == 0;
+  const double scale = *a.scale;
+  Vec2 total{0.0, 0.0};
+  double l2 = 0.0;
+  if (!gather) total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
+  const int32_t begin = gather ? a.csr_offset[i] : 0, end = gather ? a.csr_offset[i + 1] : 0;
+  for (int32_t k = begin; k < end; k += kGatherBatch) {
+    Vec2 other[kGatherBatch];
+#pragma unroll
+    for (int j = 0; j < kGatherBatch; ++j) other[j] = k + j < end ? a.p[a.csr_other[k + j]] : here;
+#pragma unroll
+    for (int j = 0; j < kGatherBatch; ++j) {
+      if (k + j >= end) break;
+      // The vector from the other end: at the bar's second end it is the bar vector
+      // p[a] - p[b] negated, which is exact, so the length and the force come out bitwise as
+      // measure_bars and the CPU engine compute them, with the sign.
+      const Vec2 v = here - other[j];
+      const double len = norm(v);
+      l2 += len * len;
+      if (i < a.nfix) continue;  // fixed nodes: their bars count towards the lagged scale only
+      const double h = a.uniform ? 1.0 : a.size[a.csr_entry[k + j] >> 1];
+      const double f = fmax(h * scale - len, 0.0);
+      total = total + (len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0});
     }
   }
+  StepSums measures{0.0, 0.0, 0.0, 0.0, l2};
+  if (i < a.nfix) {
+    a.p_next[i] = here;  // fixed nodes stay exactly where they are
+    return measures;
+  }
+  const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];
+  a.velocity[i] = step;
+  Vec2 q = here + step;
+  const double d = eval_sdf(a.fd, q);
+  if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
+  a.on_boundary[i] = d >= -a.near_boundary;
+  a.p_next[i] = q;
+  const double move2 = dot(step, step);
+  if (d < -a.geps) measures = {sqrt(move2), 0.0, move2, 1.0, l2};
+  measures.max_drift = norm(q - a.p_old[i]);
+  return measures;
+}
+
+// Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
+// which made the step 10% slower at a million nodes; the gathers are latency-bound).
+__global__ void __launch_bounds__(kBlock, 3) move_nodes(MoveArgs a) {
+  using Reduce = cub::BlockReduce<StepSums, kBlock>;
+  __shared__ typename Reduce::TempStorage temp;
+  StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
+  const int64_t stride = static_cast<int64_t>(gridDim.x) * blockDim.x;
+  for (int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; i < a.p.size;
+       i += stride)
+    measures = StepOp{}(measures, move_node(a, i));
   const StepSums total = Reduce(temp).Reduce(measures, StepOp{});
   if (threadIdx.x == 0) a.partial[blockIdx.x] = total;
 }
@@ -126,7 +147,7 @@ __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Ba
 
 __global__ void finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
                             double fscale, int64_t bars) {
-  using Reduce = cub::BlockReduce<StepSums, kBlock>;
+  using Reduce = cub::BlockReduce<StepSums, kFinishBlock>;
   __shared__ typename Reduce::TempStorage temp;
   StepSums m{0.0, 0.0, 0.0, 0.0, 0.0};
   for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x) m = StepOp{}(m, partial[i]);
@@ -153,14 +174,17 @@ void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, S
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                          DeviceSpan<BarSums> partial, cudaStream_t stream) {
   if (bars.size == 0) return;
-  measure_bars<<<blocks_for(bars.size), kBlock, 0, stream>>>(p, bars, fh, uniform, length, size,
-                                                             partial);
+  const int64_t blocks = reduce_blocks_for(bars.size);
+  if (uniform)
+    measure_bars<true><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, partial);
+  else
+    measure_bars<false><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, partial);
   MESHD_CHECK_LAUNCH("measure_bars");
 }
 
 void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
                          cudaStream_t stream) {
-  finish_scale<<<1, kBlock, 0, stream>>>(partial, fscale, scale);
+  finish_scale<<<1, kFinishBlock, 0, stream>>>(partial, fscale, scale);
   MESHD_CHECK_LAUNCH("finish_scale");
 }
 
@@ -181,7 +205,7 @@ void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> b
 
 void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
                         double fscale, int64_t bars, cudaStream_t stream) {
-  finish_step<<<1, kBlock, 0, stream>>>(partial, out, next_scale, fscale, bars);
+  finish_step<<<1, kFinishBlock, 0, stream>>>(partial, out, next_scale, fscale, bars);
   MESHD_CHECK_LAUNCH("finish_step");
 }
 

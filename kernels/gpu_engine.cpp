@@ -276,7 +276,7 @@ struct GpuEngine::Impl {
     const bool store_size = for_density_control || !uniform;
     length.resize(for_density_control ? nb : 0);
     size.resize(store_size ? nb : 0);
-    bar_partial.resize(gpu::blocks_for(nb));
+    bar_partial.resize(gpu::reduce_blocks_for(nb));
     scale.resize(1);
     gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
                              bar_partial.span(), stream);
