@@ -31,7 +31,7 @@ namespace {
 struct Options {
   std::string backend = "cpu";
   std::string force_sum = "gather";
-  bool lagged_scale = false;
+  bool exact_scale = false;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -43,11 +43,12 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
-               "                 [--lagged-scale] [--nodes N] [--repeat R] [--phases]\n"
+               "                 [--exact-scale] [--nodes N] [--repeat R] [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
-               "  --lagged-scale  the GPU engine's one-pass step: L0 scale from the step before\n"
+               "  --exact-scale   the GPU engine measures the bars before every step (by default\n"
+               "              it takes the L0 scale from the step before)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  --phases    after the table, one more with the seconds of each phase\n"
@@ -70,8 +71,8 @@ Options parse(int argc, char** argv) {
       o.backend = value();
     else if (a == "--force-sum")
       o.force_sum = value();
-    else if (a == "--lagged-scale")
-      o.lagged_scale = true;
+    else if (a == "--exact-scale")
+      o.exact_scale = true;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -106,7 +107,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
   if (o.backend == "gpu") {
     auto gpu = std::make_unique<meshd::GpuEngine>(0);
     if (o.force_sum == "atomic") gpu->set_force_sum(meshd::GpuEngine::ForceSum::kAtomic);
-    gpu->set_lagged_scale(o.lagged_scale);
+    gpu->set_lagged_scale(!o.exact_scale);
     gpu->warm_up();
     return gpu;
   }

@@ -188,9 +188,16 @@ void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, doubl
   MESHD_CHECK_LAUNCH("finish_scale");
 }
 
+int64_t move_nodes_wave(int device) {
+  int per_sm = 0, sms = 0;
+  MESHD_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, move_nodes, kBlock, 0));
+  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  return static_cast<int64_t>(per_sm) * sms;
+}
+
 void launch_move_nodes(const MoveArgs& args, cudaStream_t stream) {
   if (args.p.size == 0) return;
-  move_nodes<<<blocks_for(args.p.size), kBlock, 0, stream>>>(args);
+  move_nodes<<<args.partial.size, kBlock, 0, stream>>>(args);
   MESHD_CHECK_LAUNCH("move_nodes");
 }
 

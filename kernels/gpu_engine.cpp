@@ -138,11 +138,12 @@ struct GpuEngine::Impl {
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
   ForceSum force_sum = ForceSum::kGather;
-  bool lagged_scale = false;
+  bool lagged_scale = true;
   bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
   DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, key, key_sorted, value, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
+  int64_t step_wave = 1;  // move_nodes_wave
   DeviceBuffer<gpu::StepSums> step_sums;
   DeviceBuffer<gpu::TopologyCounters> counters;
   DeviceBuffer<unsigned long long> h_min_bits;
@@ -547,6 +548,7 @@ GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_uniq
   impl_->device = device;
   impl_->use_device();
   MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));
+  impl_->step_wave = gpu::move_nodes_wave(device);
 }
 
 GpuEngine::~GpuEngine() {
@@ -689,7 +691,7 @@ StepResult GpuEngine::move_points() {
   const bool lagged =
       s.lagged_scale && s.uniform && s.force_sum == ForceSum::kGather && s.bars.size() > 0;
   if (!(lagged && s.scale_lagged_ok)) s.measure_bars(false);
-  s.step_partial.resize(gpu::blocks_for(s.n));
+  s.step_partial.resize(std::min(gpu::blocks_for(s.n), s.step_wave));
   s.step_sums.resize(1);
   if (s.force_sum == ForceSum::kAtomic) {
     s.scattered.resize(2 * s.n);

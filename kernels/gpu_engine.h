@@ -48,10 +48,10 @@ class GpuEngine final : public Engine {
   enum class ForceSum { kGather, kAtomic };
   void set_force_sum(ForceSum mode);
 
-  // One pass over the nodes per step for a uniform size field: the L0 scale of a step is the
-  // one measured by the step before (the bar lengths one step old), except right after a
-  // triangulation, instead of a pass over the bars first. Off by default: the CPU engine and the
-  // default give the same bits.
+  // One pass over the nodes per step for a uniform size field (the default): the L0 scale of a
+  // step is the one measured by the step before (the bar lengths one step old), except right
+  // after a triangulation, instead of a pass over the bars first. Off: that pass every step, as
+  // the CPU engine does (its last bits differ all the same: its sums run in another order).
   void set_lagged_scale(bool on);
 
   const char* name() const override { return "gpu"; }

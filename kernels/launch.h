@@ -102,8 +102,15 @@ struct MoveArgs {
   ProgramView fd;
   int64_t nfix;
   double deltat, momentum, geps, deps, near_boundary;
-  DeviceSpan<StepSums> partial;  // per block: max move, max drift, sum move^2, interior count
+  // One per block, and as many blocks (at most move_nodes_wave): max move, max drift, sum of
+  // move^2, interior count, sum of bar L^2.
+  DeviceSpan<StepSums> partial;
 };
+// Blocks of move_nodes that `device` runs at once. The step loops over the nodes with at most
+// that many: one wave with no tail, and as few partials as that for finish_step to sum (3,905
+// blocks at a million nodes cost it 7 us a step against 3). The count depends only on the node
+// count and the device model: the same bits every run on one kind of GPU.
+int64_t move_nodes_wave(int device);
 // Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
 void launch_move_nodes(const MoveArgs& args, cudaStream_t stream);
 
