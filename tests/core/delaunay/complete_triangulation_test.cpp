@@ -24,6 +24,27 @@
 namespace meshd {
 namespace {
 
+// The triangles of `full` whose three nodes survive (new_index[v] >= 0), renumbered, with the
+// links they keep (-1 where the neighbour went), as the GPU engine hands them to the completion.
+Triangulation surviving_part(const Triangulation& full, const std::vector<int32_t>& new_index) {
+  Triangulation out;
+  std::vector<int32_t> new_triangle(full.triangles.size(), -1);
+  for (size_t t = 0; t < full.triangles.size(); ++t) {
+    const auto& v = full.triangles[t];
+    if (new_index[v[0]] < 0 || new_index[v[1]] < 0 || new_index[v[2]] < 0) continue;
+    new_triangle[t] = static_cast<int32_t>(out.triangles.size());
+    out.triangles.push_back({new_index[v[0]], new_index[v[1]], new_index[v[2]]});
+  }
+  for (size_t t = 0; t < full.triangles.size(); ++t) {
+    if (new_triangle[t] < 0) continue;
+    std::array<int32_t, 3> nb{};
+    for (int k = 0; k < 3; ++k)
+      nb[k] = full.neighbors[t][k] < 0 ? -1 : new_triangle[full.neighbors[t][k]];
+    out.neighbors.push_back(nb);
+  }
+  return out;
+}
+
 // Wraps the CPU engine (which drives the run) and mirrors the GPU engine's topology on the host:
 // repairs by Lawson's flips, completions after node removal, and the completion of the gaps that
 // dropped slivers leave when the loop asks for a full triangulation of an unchanged node set.
@@ -83,24 +104,7 @@ class CompletionProbe final : public Engine {
     for (size_t i = 0, j = 0; i < before.size() && j < after.size(); ++i)
       if (before[i].x == after[j].x && before[i].y == after[j].y)
         new_index[i] = static_cast<int32_t>(j++);
-    // The survivors keep their links, as the GPU engine's do (-1 where a triangle went).
-    survivors_ = Triangulation{};
-    if (have_) {
-      std::vector<int32_t> new_triangle(tri_.triangles.size(), -1);
-      for (size_t t = 0; t < tri_.triangles.size(); ++t) {
-        const auto& v = tri_.triangles[t];
-        if (new_index[v[0]] < 0 || new_index[v[1]] < 0 || new_index[v[2]] < 0) continue;
-        new_triangle[t] = static_cast<int32_t>(survivors_.triangles.size());
-        survivors_.triangles.push_back({new_index[v[0]], new_index[v[1]], new_index[v[2]]});
-      }
-      for (size_t t = 0; t < tri_.triangles.size(); ++t) {
-        if (new_triangle[t] < 0) continue;
-        std::array<int32_t, 3> nb{};
-        for (int k = 0; k < 3; ++k)
-          nb[k] = tri_.neighbors[t][k] < 0 ? -1 : new_triangle[tri_.neighbors[t][k]];
-        survivors_.neighbors.push_back(nb);
-      }
-    }
+    survivors_ = have_ ? surviving_part(tri_, new_index) : Triangulation{};
     have_ = false;
   }
 
@@ -211,22 +215,7 @@ TEST(CompleteTriangulationLinks, RandomRemovalsKeepValidLinks) {
       new_index[i] = gone ? -1 : static_cast<int32_t>(kept.size());
       if (!gone) kept.push_back(points[i]);
     }
-    Triangulation survivors;
-    std::vector<int32_t> new_triangle(full.triangles.size(), -1);
-    for (size_t t = 0; t < full.triangles.size(); ++t) {
-      const auto& v = full.triangles[t];
-      if (new_index[v[0]] < 0 || new_index[v[1]] < 0 || new_index[v[2]] < 0) continue;
-      new_triangle[t] = static_cast<int32_t>(survivors.triangles.size());
-      survivors.triangles.push_back({new_index[v[0]], new_index[v[1]], new_index[v[2]]});
-    }
-    for (size_t t = 0; t < full.triangles.size(); ++t) {
-      if (new_triangle[t] < 0) continue;
-      std::array<int32_t, 3> nb{};
-      for (int k = 0; k < 3; ++k)
-        nb[k] = full.neighbors[t][k] < 0 ? -1 : new_triangle[full.neighbors[t][k]];
-      survivors.neighbors.push_back(nb);
-    }
-    const Triangulation done = complete_triangulation(kept, std::move(survivors), 0);
+    const Triangulation done = complete_triangulation(kept, surviving_part(full, new_index), 0);
     ASSERT_FALSE(done.triangles.empty()) << "trial " << trial;
     const size_t hull = delaunay_triangulate(kept).triangles.size();
     EXPECT_EQ(done.triangles.size(), hull) << "trial " << trial;
