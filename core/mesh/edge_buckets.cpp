@@ -1,0 +1,26 @@
+#include "core/mesh/edge_buckets.h"
+
+#include <algorithm>
+
+namespace meshd {
+
+EdgeBuckets bucket_half_edges(const std::vector<std::array<int32_t, 3>>& triangles, size_t n,
+                              int shift) {
+  EdgeBuckets b;
+  b.start.assign(n + 1, 0);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) ++b.start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (size_t v = 0; v < n; ++v) b.start[v + 1] += b.start[v];
+  b.uses.resize(3 * triangles.size());
+  std::vector<int32_t> fill(b.start.begin(), b.start.end() - 1);
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int32_t from = triangles[t][(k + shift) % 3], to = triangles[t][(k + shift + 1) % 3];
+      b.uses[fill[std::min(from, to)]++] = {std::max(from, to),
+                                            static_cast<int32_t>(2 * (3 * t + k)) | (from < to)};
+    }
+  }
+  return b;
+}
+
+}  // namespace meshd
