@@ -61,6 +61,8 @@ class JobManager {
   v1::JobInfo cancel(const std::string& id, const grpc::Status& status);
   std::vector<v1::JobInfo> list(v1::JobState filter) const;
 
+  // Refuses new jobs from now on (kUnavailable), the first step of a shutdown.
+  void stop_accepting() { accepting_.store(false); }
   // Shutdown: refuses new jobs, lets queued and running ones finish for up to `grace`, then
   // cancels the rest (UNAVAILABLE for queued, CANCELLED for running ones) and joins the workers.
   void drain(std::chrono::milliseconds grace);

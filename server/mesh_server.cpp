@@ -63,6 +63,9 @@ void MeshServer::start() {
 void MeshServer::shutdown(std::chrono::milliseconds grace) {
   if (stopped_) return;
   stopped_ = true;
+  // Refuse jobs before health says NOT_SERVING: a client that saw NOT_SERVING must not get a job
+  // in (this order was found racing under ASan).
+  jobs_->stop_accepting();
   if (server_) server_->GetHealthCheckService()->SetServingStatus(false);
   spdlog::info("shutting down: {} live jobs, {} ms grace", jobs_->live_jobs(), grace.count());
   jobs_->drain(grace);
