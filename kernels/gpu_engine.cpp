@@ -673,6 +673,22 @@ int64_t GpuEngine::remove_crowded_points() {
   return s.compact_nodes();
 }
 
+int64_t GpuEngine::remove_boundary_slivers(const CompiledProblem& problem) {
+  Impl& s = *impl_;
+  s.use_device();
+  // Found where the points and triangles are: reading a million of each to the host and back
+  // cost more than the clean-up's relaxation.
+  s.flags.resize(s.n);
+  MESHD_CUDA_CHECK(cudaMemsetAsync(s.flags.data(), 1, s.n, s.stream));
+  gpu::launch_mark_boundary_slivers(s.p.span(), s.tris.span(), s.keep.span(), s.fd,
+                                    problem.params.geps * problem.h0, s.nfix, s.flags.span(),
+                                    s.stream);
+  s.position.resize(s.n);
+  gpu::exclusive_scan(s.flags.data(), s.position.data(), s.n, s.temp, s.stream);
+  if (s.last_total(s.position, s.flags) == s.n) return 0;
+  return s.compact_nodes();
+}
+
 void GpuEngine::remove_points(const std::vector<int32_t>& indices) {
   Impl& s = *impl_;
   s.use_device();

@@ -61,6 +61,7 @@ class GpuEngine final : public Engine {
   int64_t remove_crowded_points() override;
   StepResult move_points() override;
   void remove_points(const std::vector<int32_t>& indices) override;
+  int64_t remove_boundary_slivers(const CompiledProblem& problem) override;
   int64_t node_count() const override;
   void read_points(std::vector<Vec2>& points) override;
   void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override;

@@ -180,6 +180,12 @@ void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                        DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> next,
                        TopologyCounters* counters, cudaStream_t stream);
 
+// The clean-up's rule (boundary_sliver.cuh) over the kept triangles: node_keep[v] = 0 for the
+// node v at the largest angle of each sliver whose three nodes lie on the boundary (fd > -geps),
+// unless fixed (v < nfix). node_keep starts at 1.
+void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                  DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
+                                  int64_t nfix, DeviceSpan<uint8_t> node_keep, cudaStream_t stream);
 // keep[t] = fd(centroid) < -geps.
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,
                             double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream);

@@ -3,6 +3,7 @@
 // the bar list.
 #include <climits>
 
+#include "core/distmesh/boundary_sliver.cuh"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
@@ -196,6 +197,20 @@ __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> 
   keep[t] = eval_sdf(fd, centroid) < -geps;
 }
 
+__global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                      DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
+                                      int64_t nfix, DeviceSpan<uint8_t> node_keep) {
+  const int64_t t = thread_index();
+  if (t >= tris.size || !keep[t]) return;
+  const Tri tri = tris[t];
+  const Vec2 a = p[tri.v[0]], b = p[tri.v[1]], c = p[tri.v[2]];
+  if (!is_sliver(a, b, c)) return;
+  if (!(eval_sdf(fd, a) > -geps) || !(eval_sdf(fd, b) > -geps) || !(eval_sdf(fd, c) > -geps))
+    return;
+  const int32_t v = tri.v[largest_angle_corner(a, b, c)];
+  if (v >= nfix) node_keep[v] = 0;
+}
+
 __device__ inline bool is_bar(int64_t t, int32_t u, DeviceSpan<const uint8_t> keep) {
   if (u >= 0 && u < t) return false;
   return keep[t] || (u >= 0 && keep[u]);
@@ -325,6 +340,16 @@ void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
   if (tris.size == 0) return;
   hull_turns<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, nbrs, next, counters);
   MESHD_CHECK_LAUNCH("hull_turns");
+}
+
+void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                  DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
+                                  int64_t nfix, DeviceSpan<uint8_t> node_keep,
+                                  cudaStream_t stream) {
+  if (tris.size == 0) return;
+  mark_boundary_slivers<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, keep, fd, geps, nfix,
+                                                                      node_keep);
+  MESHD_CHECK_LAUNCH("mark_boundary_slivers");
 }
 
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 
+#include "core/distmesh/boundary_sliver.cuh"
+#include "core/distmesh/engine.h"
 #include "core/geometry/sdf_eval.cuh"
-#include "core/mesh/quality.h"
 
 namespace meshd {
 
@@ -20,16 +21,24 @@ std::vector<int32_t> cleanup_victims(const CompiledProblem& problem,
   std::vector<int32_t> victims;
   for (const auto& t : triangles) {
     const Vec2 a = points[t[0]], b = points[t[1]], c = points[t[2]];
-    if (radius_ratio(a, b, c) >= kSliverQuality) continue;
+    if (!is_sliver(a, b, c)) continue;
     if (!boundary(t[0]) || !boundary(t[1]) || !boundary(t[2])) continue;
-    // The obtuse corner is opposite the longest side.
-    const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
-    const int k = la >= lb && la >= lc ? 0 : (lb >= lc ? 1 : 2);
+    const int k = largest_angle_corner(a, b, c);
     if (t[k] >= nfix) victims.push_back(t[k]);
   }
   std::sort(victims.begin(), victims.end());
   victims.erase(std::unique(victims.begin(), victims.end()), victims.end());
   return victims;
+}
+
+int64_t Engine::remove_boundary_slivers(const CompiledProblem& problem) {
+  std::vector<Vec2> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  read_points(points);
+  read_triangles(triangles);
+  const std::vector<int32_t> victims = cleanup_victims(problem, points, triangles);
+  if (!victims.empty()) remove_points(victims);
+  return static_cast<int64_t>(victims.size());
 }
 
 }  // namespace meshd

@@ -12,9 +12,6 @@
 
 namespace meshd {
 
-// A boundary triangle with radius ratio under this is a sliver worth removing.
-constexpr double kSliverQuality = 0.5;
-
 // Nodes to remove: for each sliver whose nodes all lie on the boundary (d > -geps), its node
 // at the largest angle, unless fixed. points: #N by 2 (fixed first); triangles: #M by 3.
 std::vector<int32_t> cleanup_victims(const CompiledProblem& problem,

@@ -7,7 +7,6 @@
 
 #include "core/common/error.h"
 #include "core/distmesh/assemble_mesh.h"
-#include "core/distmesh/cleanup.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/distmesh/refine.h"
@@ -87,12 +86,9 @@ class Loop {
         const int budget = std::min(kCleanupIterations, problem_.params.max_iterations -
                                                             s.iterations - s.cleanup_iterations);
         if (budget <= 0) break;
-        engine_.read_points(points_);
-        engine_.read_triangles(triangles_);
-        const auto victims = cleanup_victims(problem_, points_, triangles_);
-        if (victims.empty()) break;
-        engine_.remove_points(victims);
-        s.cleanup_removed += static_cast<int64_t>(victims.size());
+        const int64_t removed = engine_.remove_boundary_slivers(problem_);
+        if (removed == 0) break;
+        s.cleanup_removed += removed;
         triangulate(true);
         relax(budget, false, s.cleanup_iterations);
       }

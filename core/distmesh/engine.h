@@ -65,6 +65,10 @@ class Engine {
   virtual StepResult move_points() = 0;
   // Removes the given (non-fixed) nodes; the caller retriangulates in full afterwards.
   virtual void remove_points(const std::vector<int32_t>& indices) = 0;
+  // The boundary clean-up's removal (cleanup.h) over the kept triangles. Returns how many nodes
+  // went; the caller retriangulates in full when any did. By default on the host, from copies of
+  // the points and triangles (cleanup.cpp); the GPU engine finds them where they are.
+  virtual int64_t remove_boundary_slivers(const CompiledProblem& problem);
 
   virtual int64_t node_count() const = 0;
   virtual void read_points(std::vector<Vec2>& points) = 0;

@@ -6,14 +6,6 @@
 
 namespace meshd {
 
-double radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
-  const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
-  const double denom = la * lb * lc;
-  if (denom <= 0.0) return 0.0;
-  const double q = (lb + lc - la) * (lc + la - lb) * (la + lb - lc) / denom;
-  return std::max(q, 0.0);
-}
-
 double min_angle_deg(Vec2 a, Vec2 b, Vec2 c) {
   auto angle = [](Vec2 apex, Vec2 u, Vec2 v) {
     return std::atan2(std::fabs(cross(u - apex, v - apex)), dot(u - apex, v - apex));

@@ -7,11 +7,10 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/radius_ratio.cuh"
 
 namespace meshd {
 
-// q = (b + c - a)(c + a - b)(a + b - c) / (a b c) for side lengths a, b, c; 0 when degenerate.
-double radius_ratio(Vec2 a, Vec2 b, Vec2 c);
 // The smallest interior angle, in degrees.
 double min_angle_deg(Vec2 a, Vec2 b, Vec2 c);
 

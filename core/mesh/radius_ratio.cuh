@@ -1,0 +1,20 @@
+// The radius ratio q = 2 r_in / R_circ of a triangle (simpqual.m): 1 for an equilateral
+// triangle, 0 for a degenerate one. Shared by the quality measures and the clean-up's sliver
+// test, which the GPU engine runs too.
+#pragma once
+
+#include "core/common/hd.h"
+#include "core/common/vec2.h"
+
+namespace meshd {
+
+// q = (b + c - a)(c + a - b)(a + b - c) / (a b c) for side lengths a, b, c; 0 when degenerate.
+MESHD_HD inline double radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
+  const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
+  const double denom = la * lb * lc;
+  if (denom <= 0.0) return 0.0;
+  const double q = (lb + lc - la) * (lc + la - lb) * (la + lb - lc) / denom;
+  return q < 0.0 ? 0.0 : q;  // std::max(q, 0.0), NaN included
+}
+
+}  // namespace meshd
