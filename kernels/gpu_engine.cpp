@@ -208,24 +208,12 @@ struct GpuEngine::Impl {
     // full triangulation completes them (complete_triangulation.h) instead of starting over.
     Triangulation survivors;
     if (have_triangulation) {
-      // keep and count serve as scratch: the next triangulation sets them again.
-      const int64_t m = static_cast<int64_t>(tris.size());
-      keep.resize(m);
-      count.resize(m);
+      // keep serves as scratch: the next triangulation sets it again.
+      keep.resize(tris.size());
       gpu::launch_surviving_triangles(tris.span(), flags.span(), keep.span(), stream);
-      gpu::exclusive_scan(keep.data(), count.data(), m, temp, stream);
-      const int64_t alive = last_total(count, keep);
-      tris_tmp.resize(alive);
-      nbrs_tmp.resize(alive);
-      gpu::launch_compact_triangles(tris.span(), nbrs.span(), keep.span(), count.span(),
-                                    tris_tmp.span(), nbrs_tmp.span(), stream);
+      compact_alive_triangles(keep);
       gpu::launch_renumber_vertices(tris_tmp.span(), position.span(), stream);
-      survivors.triangles.resize(alive);
-      survivors.neighbors.resize(alive);
-      static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
-      tris_tmp.download(reinterpret_cast<Tri*>(survivors.triangles.data()), stream);
-      nbrs_tmp.download(reinterpret_cast<Tri*>(survivors.neighbors.data()), stream);
-      sync();
+      survivors = download_triangulation(tris_tmp, nbrs_tmp);
     }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
@@ -235,6 +223,31 @@ struct GpuEngine::Impl {
     reset_node_state();
     if (!survivors.triangles.empty()) prepare_completion(std::move(survivors));
     return removed;
+  }
+
+  // Copies the triangles with alive[t] into tris_tmp, in order, and their links into nbrs_tmp
+  // (-1 where the neighbour is not alive). Returns how many. `count` holds the scan.
+  int64_t compact_alive_triangles(const DeviceBuffer<uint8_t>& alive) {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    count.resize(m);
+    gpu::exclusive_scan(alive.data(), count.data(), m, temp, stream);
+    const int64_t kept = last_total(count, alive);
+    tris_tmp.resize(kept);
+    nbrs_tmp.resize(kept);
+    gpu::launch_compact_triangles(tris.span(), nbrs.span(), alive.span(), count.span(),
+                                  tris_tmp.span(), nbrs_tmp.span(), stream);
+    return kept;
+  }
+
+  Triangulation download_triangulation(const DeviceBuffer<Tri>& t, const DeviceBuffer<Tri>& nb) {
+    static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
+    Triangulation out;
+    out.triangles.resize(t.size());
+    out.neighbors.resize(nb.size());
+    t.download(reinterpret_cast<Tri*>(out.triangles.data()), stream);
+    nb.download(reinterpret_cast<Tri*>(out.neighbors.data()), stream);
+    sync();
+    return out;
   }
 
   // Completes `partial` (triangles of the current nodes) on the host and uploads the result
@@ -624,12 +637,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     int64_t flips = s.repair(dropped);
     if (flips >= 0 && !s.covers_hull()) {
       // Close the gaps with CGAL on their boundary points alone, then flip again.
-      Triangulation partial;
-      partial.triangles.resize(s.tris.size());
-      partial.neighbors.resize(s.nbrs.size());
-      s.tris.download(reinterpret_cast<Tri*>(partial.triangles.data()), s.stream);
-      s.nbrs.download(reinterpret_cast<Tri*>(partial.neighbors.data()), s.stream);
-      s.prepare_completion(std::move(partial));
+      s.prepare_completion(s.download_triangulation(s.tris, s.nbrs));
       flips = s.prepared ? s.flip_prepared() : -1;
     }
     if (flips >= 0) {
@@ -768,14 +776,7 @@ void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
   s.use_device();
   // Compacted on the device: at a million triangles the host loop over all of them cost more
   // than the copy.
-  const int64_t m = static_cast<int64_t>(s.tris.size());
-  s.position.resize(m);
-  gpu::exclusive_scan(s.keep.data(), s.position.data(), m, s.temp, s.stream);
-  const int64_t kept = s.last_total(s.position, s.keep);
-  s.tris_tmp.resize(kept);
-  s.nbrs_tmp.resize(kept);
-  gpu::launch_compact_triangles(s.tris.span(), s.nbrs.span(), s.keep.span(), s.position.span(),
-                                s.tris_tmp.span(), s.nbrs_tmp.span(), s.stream);
+  const int64_t kept = s.compact_alive_triangles(s.keep);
   triangles.resize(kept);
   static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
   s.tris_tmp.download(reinterpret_cast<Tri*>(triangles.data()), s.stream);
