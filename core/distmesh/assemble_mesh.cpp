@@ -1,5 +1,6 @@
 #include "core/distmesh/assemble_mesh.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -9,25 +10,40 @@
 namespace meshd {
 
 Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& points,
-                   const std::vector<std::array<int32_t, 3>>& triangles) {
+                   const std::vector<std::array<int32_t, 3>>& triangles,
+                   const std::vector<int32_t>& boundary) {
   Mesh mesh;
   std::vector<int32_t> new_index(points.size(), -1);
   for (const auto& t : triangles)
     for (int32_t v : t) new_index[v] = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (new_index[i] < 0) continue;
-    new_index[i] = static_cast<int32_t>(mesh.points.size());
-    mesh.points.push_back(points[i]);
-  }
+  int32_t used = 0;
+  for (int32_t& k : new_index)
+    if (k == 0) k = used++;
+  mesh.points.reserve(static_cast<size_t>(used));
+  for (size_t i = 0; i < points.size(); ++i)
+    if (new_index[i] >= 0) mesh.points.push_back(points[i]);
+  std::vector<int32_t> turned;  // triangles turned over, increasing
   mesh.triangles.reserve(triangles.size());
-  for (const auto& t : triangles) {
-    std::array<int32_t, 3> u{new_index[t[0]], new_index[t[1]], new_index[t[2]]};
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    std::array<int32_t, 3> u{new_index[triangles[t][0]], new_index[triangles[t][1]],
+                             new_index[triangles[t][2]]};
     const Vec2 a = mesh.points[u[0]], b = mesh.points[u[1]], c = mesh.points[u[2]];
-    if (cross(b - a, c - a) < 0.0) std::swap(u[1], u[2]);
+    if (cross(b - a, c - a) < 0.0) {
+      std::swap(u[1], u[2]);
+      turned.push_back(static_cast<int32_t>(t));
+    }
     mesh.triangles.push_back(u);
   }
 
-  mesh.boundary_edges = boundary_edges_of(mesh.triangles);
+  // Turning a triangle over reverses its half-edges and their order: boundary half-edge
+  // 3 t + k becomes 3 t + 2 - k (boundary.h).
+  std::vector<int32_t> ids(boundary);
+  if (!turned.empty()) {
+    for (int32_t& id : ids)
+      if (std::binary_search(turned.begin(), turned.end(), id / 3)) id = 3 * (id / 3) + 2 - id % 3;
+    std::sort(ids.begin(), ids.end());
+  }
+  mesh.boundary_edges = half_edge_ends(mesh.triangles, ids);
   // The primitive that wins the min / max at an edge's midpoint is the boundary it lies on.
   std::map<std::string, int32_t> group_of_name;
   std::vector<int32_t> group_of_primitive(problem.geometry.primitives.size(), -1);

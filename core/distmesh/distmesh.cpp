@@ -10,6 +10,7 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/distmesh/refine.h"
+#include "core/mesh/boundary.h"
 
 namespace meshd {
 namespace {
@@ -103,12 +104,14 @@ class Loop {
     if (dropped_since_full_ > 0) triangulate(true);
     engine_.read_points(points_);
     engine_.read_triangles(triangles_);
+    // The boundary depends on the triangles alone, which the optimisation keeps: found once.
+    const std::vector<int32_t> boundary = boundary_half_edges(triangles_);
     if (problem_.params.cleanup) {
       const auto t = Clock::now();
-      s.optimized_moves = optimize_worst_elements(problem_, points_, triangles_);
+      s.optimized_moves = optimize_worst_elements(problem_, points_, triangles_, boundary);
       s.t_cleanup += seconds_since(t);
     }
-    result.mesh = assemble_mesh(problem_, points_, triangles_);
+    result.mesh = assemble_mesh(problem_, points_, triangles_, boundary);
     result.quality = summarize_quality(result.mesh);
     s.t_finish = seconds_since(t_finish);
     s.t_total = seconds_since(t0);

@@ -26,16 +26,20 @@ Stars build_stars(size_t n, const std::vector<std::array<int32_t, 3>>& triangles
     for (int32_t v : t) ++s.offset[v + 1];
   for (size_t i = 0; i < n; ++i) s.offset[i + 1] += s.offset[i];
   s.tri.resize(3 * triangles.size());
-  std::vector<int32_t> fill(s.offset.begin(), s.offset.end() - 1);
+  // offset[v] serves as v's fill cursor and ends at offset[v + 1]'s value: one shift puts it
+  // back, without a copy of the offsets.
   for (size_t t = 0; t < triangles.size(); ++t)
-    for (int32_t v : triangles[t]) s.tri[fill[v]++] = static_cast<int32_t>(t);
+    for (int32_t v : triangles[t]) s.tri[s.offset[v]++] = static_cast<int32_t>(t);
+  std::copy_backward(s.offset.begin(), s.offset.end() - 1, s.offset.end());
+  s.offset[0] = 0;
   return s;
 }
 
 class Optimizer {
  public:
   Optimizer(const CompiledProblem& problem, std::vector<Vec2>& points,
-            const std::vector<std::array<int32_t, 3>>& triangles)
+            const std::vector<std::array<int32_t, 3>>& triangles,
+            const std::vector<int32_t>& boundary)
       : fd_(problem.geometry.view()),
         deps_(problem.params.deps * problem.h0),
         nfix_(static_cast<int32_t>(problem.fixed_points.size())),
@@ -43,7 +47,8 @@ class Optimizer {
         t_(triangles),
         stars_(build_stars(points.size(), triangles)),
         on_boundary_(points.size(), 0) {
-    for (const auto& e : boundary_edges_of(triangles)) on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
+    for (const auto& e : half_edge_ends(triangles, boundary))
+      on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
   }
 
   int64_t run() {
@@ -158,8 +163,9 @@ class Optimizer {
 }  // namespace
 
 int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
-                                const std::vector<std::array<int32_t, 3>>& triangles) {
-  return Optimizer(problem, points, triangles).run();
+                                const std::vector<std::array<int32_t, 3>>& triangles,
+                                const std::vector<int32_t>& boundary) {
+  return Optimizer(problem, points, triangles, boundary).run();
 }
 
 }  // namespace meshd

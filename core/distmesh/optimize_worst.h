@@ -20,9 +20,11 @@ namespace meshd {
 // Triangles under this radius ratio have their nodes optimised.
 constexpr double kOptimizeBelowQuality = 0.8;
 
-// points: #N by 2, fixed nodes first (never moved); triangles: #M by 3, counter-clockwise.
-// Returns the number of node moves made.
+// points: #N by 2, fixed nodes first (never moved); triangles: #M by 3, counter-clockwise;
+// boundary: boundary_half_edges(triangles) (core/mesh/boundary.h), whose ends move along the
+// boundary. Returns the number of node moves made.
 int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
-                                const std::vector<std::array<int32_t, 3>>& triangles);
+                                const std::vector<std::array<int32_t, 3>>& triangles,
+                                const std::vector<int32_t>& boundary);
 
 }  // namespace meshd

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace meshd {
@@ -18,7 +19,9 @@ struct EdgeUse {
 
 struct EdgeBuckets {
   std::vector<int32_t> start;  // #N + 1: the uses of bucket v are uses[start[v], start[v + 1])
-  std::vector<EdgeUse> uses;   // #3M, eight bytes each: the scattered writes stay few
+  // #3M, eight bytes each: the scattered writes stay few. Not a vector: every entry is written
+  // once, so zeroing them first would be a wasted pass over the largest array.
+  std::unique_ptr<EdgeUse[]> uses;
 };
 
 // Half-edge 3 t + k runs from triangles[t][(k + shift) % 3] to triangles[t][(k + shift + 1) % 3].

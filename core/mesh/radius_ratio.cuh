@@ -9,12 +9,16 @@
 namespace meshd {
 
 // q = (b + c - a)(c + a - b)(a + b - c) / (a b c) for side lengths a, b, c; 0 when degenerate.
-MESHD_HD inline double radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
-  const double la = norm(b - c), lb = norm(c - a), lc = norm(a - b);
+MESHD_HD inline double radius_ratio_of_sides(double la, double lb, double lc) {
   const double denom = la * lb * lc;
   if (denom <= 0.0) return 0.0;
   const double q = (lb + lc - la) * (lc + la - lb) * (la + lb - lc) / denom;
   return q < 0.0 ? 0.0 : q;  // std::max(q, 0.0), NaN included
+}
+
+// The same for the triangle (a, b, c): la = |b - c|, lb = |c - a|, lc = |a - b|.
+MESHD_HD inline double radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
+  return radius_ratio_of_sides(norm(b - c), norm(c - a), norm(a - b));
 }
 
 }  // namespace meshd

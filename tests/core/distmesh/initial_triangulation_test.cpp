@@ -10,6 +10,7 @@
 #include "core/common/thread_pool.h"
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/lawson_repair.h"
+#include "core/delaunay/triangle_neighbors.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/node_estimate.h"
@@ -68,6 +69,10 @@ TEST_P(InitialTriangulation, FlipsToTheDelaunayTriangulationOfTheInitialPoints) 
     const InitialGrid grid = make_initial_grid(c.bbox, c.h0);
     Triangulation tri = initial_triangulation(grid, kept_flags(c, grid), c.fixed_points);
     ASSERT_FALSE(tri.triangles.empty()) << GetParam() << " at " << nodes;
+    // The lattice's neighbours, known by construction, are those that matching edges finds.
+    std::vector<std::array<int32_t, 3>> matched;
+    ASSERT_TRUE(triangle_neighbors(tri.triangles, points.size(), matched));
+    EXPECT_EQ(tri.neighbors, matched) << GetParam() << " at " << nodes;
     for (const auto& t : tri.triangles)
       ASSERT_GT(orientation_sign(points[t[0]], points[t[1]], points[t[2]]), 0);
     const std::vector<char> keep(tri.triangles.size(), 1), on_boundary(points.size(), 0);
