@@ -122,9 +122,8 @@ class Loop {
  private:
   static constexpr int kCleanupRounds = 3;
   static constexpr int kCleanupIterations = 200;
+  // The termination test's constants (step_rule.cuh).
   static constexpr double kMaxMoveFactor = 10.0;
-  // A relaxation runs at least this long: right after a triangulation a lattice-like start can
-  // be balanced everywhere inside while its boundary layer has not moved yet.
   static constexpr int kMinIterations = 10;
 
   void triangulate(bool full) {
@@ -149,38 +148,73 @@ class Loop {
   // whether the termination test passed.
   bool relax(int max_iterations, bool density_control, int& iterations) {
     const Params& prm = current_->params;
-    for (int it = 1; it <= max_iterations; ++it) {
-      if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
-        throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
+    const int interval = density_control ? prm.density_control_interval : 0;
+    StepRule rule;
+    rule.ttol = prm.ttol;
+    rule.dptol = prm.dptol;
+    rule.max_move_factor = kMaxMoveFactor;
+    rule.min_iterations = kMinIterations;
+    int it = 1;
+    while (it <= max_iterations) {
+      check_cancel();
       ++iterations;
       // 3. Retriangulate once some node drifted ttol * h0 from where it was triangulated.
-      if (drift_ > prm.ttol) triangulate(false);
+      if (rule.needs_triangulation(drift_)) triangulate(false);
       // 6. Density control.
-      if (density_control && prm.density_control_interval > 0 &&
-          it % prm.density_control_interval == 0) {
+      if (interval > 0 && it % interval == 0) {
         const auto t = Clock::now();
         const int64_t removed = engine_.remove_crowded_points();
         stats_.t_density += seconds_since(t);
         if (removed > 0) {
           stats_.density_removed += removed;
           triangulate(true);
+          ++it;
           continue;
         }
       }
-      // 4-5, 7-8. Forces, Euler step, projection.
+      // 4-5, 7-8. Forces, Euler step, projection: as many steps at once as the engine likes, up
+      // to the next density control or snapshot; the engine stops after a step that calls for
+      // step 3 or passes step 8, so each iteration of the batch is one that this loop would run.
+      int limit = std::min(engine_.preferred_batch(), max_iterations - it + 1);
+      if (interval > 0) limit = std::min(limit, interval - it % interval);
+      limit = up_to_snapshot(limit);
+      steps_.clear();
       const auto t = Clock::now();
-      const StepResult step = engine_.move_points();
+      engine_.move_points_until(rule, it, limit, steps_);
       stats_.t_forces += seconds_since(t);
-      drift_ = step.max_drift;
-      report(stats_.iterations + stats_.cleanup_iterations, step.max_move);
-      // 8. Termination (params.h): the interior has settled as a whole and no node still moves
-      // far; waiting for the last annealing node to stop costs hundreds of iterations and no
-      // quality.
-      if (it >= kMinIterations && step.rms_move < prm.dptol &&
-          step.max_move < kMaxMoveFactor * prm.dptol)
-        return true;
+      for (size_t k = 0; k < steps_.size(); ++k, ++it) {
+        if (k > 0) {
+          check_cancel();
+          ++iterations;
+        }
+        drift_ = steps_[k].max_drift;
+        report(stats_.iterations + stats_.cleanup_iterations, steps_[k].max_move);
+        // 8. Termination (step_rule.cuh).
+        if (rule.converged(steps_[k], it)) return true;
+      }
     }
     return false;
+  }
+
+  void check_cancel() const {
+    if (cancel_ != nullptr && cancel_->load(std::memory_order_relaxed))
+      throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
+  }
+
+  // Shortens a batch of `limit` steps so that it ends at the first of its iterations that the
+  // observer wants a snapshot of. Each iteration number is asked about once, in order.
+  int up_to_snapshot(int limit) {
+    if (observer_ == nullptr) return limit;
+    const int first = stats_.iterations + stats_.cleanup_iterations;  // the batch's first step
+    for (int k = 0; k < limit; ++k) {
+      const int number = first + k;
+      if (number > asked_through_) {
+        asked_through_ = number;
+        if (observer_->wants_snapshot(number)) snapshot_at_ = number;
+      }
+      if (number == snapshot_at_) return k + 1;
+    }
+    return limit;
   }
 
   void report(int iteration, double max_move) {
@@ -193,7 +227,7 @@ class Loop {
     p.nodes = engine_.node_count();
     p.elapsed_s = seconds_since(start_);
     observer_->on_progress(p);
-    if (!observer_->wants_snapshot(iteration)) return;
+    if (iteration != snapshot_at_) return;
     engine_.read_points(points_);
     const bool changed = topology_version_ != snapshot_version_;
     if (changed) engine_.read_triangles(triangles_);
@@ -212,6 +246,9 @@ class Loop {
   int64_t dropped_since_full_ = 0;
   int64_t topology_version_ = 0;
   int64_t snapshot_version_ = -1;
+  int asked_through_ = 0;  // the last iteration number the observer was asked about
+  int snapshot_at_ = 0;    // the iteration it wants a snapshot of next
+  std::vector<StepResult> steps_;
   std::vector<Vec2> points_;
   std::vector<std::array<int32_t, 3>> triangles_;
 };

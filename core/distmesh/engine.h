@@ -10,6 +10,7 @@
 
 #include "core/common/vec2.h"
 #include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/step_rule.cuh"
 
 namespace meshd {
 
@@ -26,13 +27,6 @@ constexpr double kNearBoundaryRelative = 0.6;
 inline double iteration_bytes(int64_t nodes, int64_t bars, bool graded) {
   return 85.0 * static_cast<double>(nodes) + (graded ? 32.0 : 16.0) * static_cast<double>(bars);
 }
-
-struct StepResult {
-  double max_move = 0.0;  // largest move of an interior node (d < -geps) this step, / h0
-  double max_drift = 0.0;
-  double rms_move = 0.0;  // root mean square of the interior moves, / h0  // largest |p -
-                          // p_at_last_triangulation| after the step, / h0
-};
 
 struct TopologyStats {
   int64_t triangles = 0;  // kept inside the domain
@@ -63,6 +57,16 @@ class Engine {
   // Steps 4, 5, 7, 8: bar forces, Euler step, projection onto the boundary; also measures
   // step 3's test for the next iteration (the drift since the last triangulation).
   virtual StepResult move_points() = 0;
+  // Runs move_points up to `limit` times and appends each step's result to `steps`; stops after
+  // the first step at which `rule.stops(result, first_iteration + k)` (k from 0). By default one
+  // move_points after the other; the GPU engine runs them on the device with no host round trip
+  // in between.
+  virtual void move_points_until(const StepRule& rule, int first_iteration, int limit,
+                                 std::vector<StepResult>& steps);
+  // How many steps the loop should ask for at once: 1 where a step is long enough that the host
+  // round trip is nothing (the default), more where it is not. The loop reports the steps of a
+  // batch, and checks for cancellation, only after the batch.
+  virtual int preferred_batch() const { return 1; }
   // Removes the given (non-fixed) nodes; the caller retriangulates in full afterwards.
   virtual void remove_points(const std::vector<int32_t>& indices) = 0;
   // The boundary clean-up's removal (cleanup.h) over the kept triangles. Returns how many nodes

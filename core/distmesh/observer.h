@@ -23,7 +23,8 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void on_progress(const Progress&) {}
-  // Asked after each iteration; true means on_snapshot follows.
+  // Asked once for each iteration, in order, at most a batch of steps ahead (engine.h); true
+  // means on_snapshot follows right after that iteration.
   virtual bool wants_snapshot(int /*iteration*/) { return false; }
   // points: #N by 2. triangles: #M by 3, or null when the topology did not change since the
   // last snapshot.

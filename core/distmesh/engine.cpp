@@ -1,0 +1,13 @@
+#include "core/distmesh/engine.h"
+
+namespace meshd {
+
+void Engine::move_points_until(const StepRule& rule, int first_iteration, int limit,
+                               std::vector<StepResult>& steps) {
+  for (int k = 0; k < limit; ++k) {
+    steps.push_back(move_points());
+    if (rule.stops(steps.back(), first_iteration + k)) return;
+  }
+}
+
+}  // namespace meshd
