@@ -32,6 +32,7 @@ struct Options {
   std::string backend = "cpu";
   std::string force_sum = "gather";
   bool exact_scale = false;
+  bool step_graph = true;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -43,12 +44,15 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
-               "                 [--exact-scale] [--nodes N] [--repeat R] [--phases]\n"
+               "                 [--exact-scale] [--no-step-graph] [--nodes N] [--repeat R]\n"
+               "                 [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
                "  --exact-scale   the GPU engine measures the bars before every step (by default\n"
                "              it takes the L0 scale from the step before)\n"
+               "  --no-step-graph the GPU engine launches a step's kernels one by one and waits\n"
+               "              for each step (by default a CUDA graph runs up to 32 steps)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  --phases    after the table, one more with the seconds of each phase\n"
@@ -73,6 +77,8 @@ Options parse(int argc, char** argv) {
       o.force_sum = value();
     else if (a == "--exact-scale")
       o.exact_scale = true;
+    else if (a == "--no-step-graph")
+      o.step_graph = false;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -108,6 +114,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
     auto gpu = std::make_unique<meshd::GpuEngine>(0);
     if (o.force_sum == "atomic") gpu->set_force_sum(meshd::GpuEngine::ForceSum::kAtomic);
     gpu->set_lagged_scale(!o.exact_scale);
+    if (!o.step_graph) gpu->set_step_graph(false);
     gpu->warm_up();
     return gpu;
   }

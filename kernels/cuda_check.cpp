@@ -15,10 +15,17 @@ void throw_cuda_error(cudaError_t error, const char* call, const char* file, int
                   ") in " + call + " at " + file + ":" + std::to_string(line));
 }
 
+namespace {
+thread_local bool capturing = false;
+}  // namespace
+
+CaptureScope::CaptureScope() { capturing = true; }
+CaptureScope::~CaptureScope() { capturing = false; }
+
 void check_launch(const char* kernel, const char* file, int line) {
   cudaError_t error = cudaGetLastError();
 #ifdef MESHD_CUDA_SYNC_LAUNCHES
-  if (error == cudaSuccess) error = cudaDeviceSynchronize();
+  if (error == cudaSuccess && !capturing) error = cudaDeviceSynchronize();
 #endif
   if (error != cudaSuccess) throw_cuda_error(error, kernel, file, line);
 }

@@ -13,6 +13,16 @@ namespace meshd::gpu {
 // so that an error names the kernel that caused it.
 void check_launch(const char* kernel, const char* file, int line);
 
+// While one lives, this thread is capturing a CUDA graph: launch checks do not synchronise
+// (capture forbids it; the graph's launch is checked instead).
+class CaptureScope {
+ public:
+  CaptureScope();
+  ~CaptureScope();
+  CaptureScope(const CaptureScope&) = delete;
+  CaptureScope& operator=(const CaptureScope&) = delete;
+};
+
 }  // namespace meshd::gpu
 
 #define MESHD_CUDA_CHECK(call)                                               \

@@ -116,11 +116,20 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
 
 // Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
 // which made the step 10% slower at a million nodes; the gathers are latency-bound).
-__global__ void __launch_bounds__(kBlock, 3) move_nodes(MoveArgs a) {
+__global__ void __launch_bounds__(kBlock, 3) move_nodes(const StepBatch* batch) {
+  // The arguments live in device memory, where the step before swapped p and p_next; each block
+  // copies them to shared memory once, word by word.
+  __shared__ MoveArgs a;
+  static_assert(sizeof(MoveArgs) % sizeof(uint64_t) == 0 && sizeof(MoveArgs) / 8 <= kBlock);
+  if (threadIdx.x < sizeof(MoveArgs) / sizeof(uint64_t))
+    reinterpret_cast<uint64_t*>(&a)[threadIdx.x] =
+        reinterpret_cast<const uint64_t*>(&batch->args)[threadIdx.x];
+  __syncthreads();
+  if (blockIdx.x >= a.partial.size) return;
   using Reduce = cub::BlockReduce<StepSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
   StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
-  const int64_t stride = static_cast<int64_t>(gridDim.x) * blockDim.x;
+  const int64_t stride = a.partial.size * blockDim.x;
   for (int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; i < a.p.size;
        i += stride)
     measures = StepOp{}(measures, move_node(a, i));
@@ -146,18 +155,30 @@ __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Ba
   atomicAdd(&force[2 * bar.b + 1], -fv.y);
 }
 
-__global__ void finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
-                            double fscale, int64_t bars) {
+// in_graph: launched by the step graph, whose loop condition `more` it sets.
+__global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditionalHandle more) {
   using Reduce = cub::BlockReduce<StepSums, kFinishBlock>;
   __shared__ typename Reduce::TempStorage temp;
+  const DeviceSpan<StepSums> partial = batch->args.partial;
   StepSums m{0.0, 0.0, 0.0, 0.0, 0.0};
   for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x) m = StepOp{}(m, partial[i]);
   const StepSums total = Reduce(temp).Reduce(m, StepOp{});
   if (threadIdx.x != 0) return;
-  *out = total;
+  StepBatch& b = *batch;
   // Each bar was measured from both ends.
-  if (next_scale != nullptr && bars > 0)
-    *next_scale = fscale * sqrt(0.5 * total.bar_l2 / static_cast<double>(bars));
+  if (b.next_scale != nullptr && b.bars > 0)
+    *b.next_scale = b.fscale * sqrt(0.5 * total.bar_l2 / static_cast<double>(b.bars));
+  StepResult r;
+  r.max_move = total.max_move / b.h0;
+  r.max_drift = total.max_drift / b.h0;
+  r.rms_move = total.interior > 0.0 ? sqrt(total.sum_sq / total.interior) / b.h0 : 0.0;
+  const int32_t k = b.count++;
+  b.results[k] = r;
+  Vec2* const moved = b.args.p_next.data;
+  b.args.p_next.data = const_cast<Vec2*>(b.args.p.data);
+  b.args.p.data = moved;
+  if (in_graph)
+    cudaGraphSetConditional(more, k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k));
 }
 
 __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,
@@ -196,9 +217,8 @@ int64_t move_nodes_wave(int device) {
   return static_cast<int64_t>(per_sm) * sms;
 }
 
-void launch_move_nodes(const MoveArgs& args, cudaStream_t stream) {
-  if (args.p.size == 0) return;
-  move_nodes<<<args.partial.size, kBlock, 0, stream>>>(args);
+void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream) {
+  move_nodes<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("move_nodes");
 }
 
@@ -211,9 +231,9 @@ void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> b
   MESHD_CHECK_LAUNCH("scatter_bar_forces");
 }
 
-void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
-                        double fscale, int64_t bars, cudaStream_t stream) {
-  finish_step<<<1, kFinishBlock, 0, stream>>>(partial, out, next_scale, fscale, bars);
+void launch_finish_step(StepBatch* batch, const cudaGraphConditionalHandle* more,
+                        cudaStream_t stream) {
+  finish_step<<<1, kFinishBlock, 0, stream>>>(batch, more != nullptr, more != nullptr ? *more : 0);
   MESHD_CHECK_LAUNCH("finish_step");
 }
 

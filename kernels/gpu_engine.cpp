@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 
 #include "core/common/error.h"
 #include "core/delaunay/complete_triangulation.h"
@@ -13,6 +16,7 @@
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
 #include "kernels/scan.h"
+#include "kernels/step_graph.h"
 
 namespace meshd {
 
@@ -143,12 +147,13 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, key, key_sorted, value, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
-  int64_t step_wave = 1;  // move_nodes_wave
-  DeviceBuffer<gpu::StepSums> step_sums;
+  int64_t step_wave = 1;                       // move_nodes_wave
+  DeviceBuffer<gpu::StepBatch> batch;          // one, for the step graph
+  std::unique_ptr<gpu::StepGraph> step_graph;  // null: the step's kernels launched one by one
   DeviceBuffer<gpu::TopologyCounters> counters;
   DeviceBuffer<unsigned long long> h_min_bits;
   DeviceBuffer<uint8_t> temp;
-  PinnedValue<gpu::StepSums> h_step;
+  PinnedValue<gpu::StepBatch> h_batch;
   PinnedValue<gpu::TopologyCounters> h_counters;
   PinnedValue<int32_t> h_ints;  // two ints: last position and last flag/count
 
@@ -295,6 +300,75 @@ struct GpuEngine::Impl {
     gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
                              bar_partial.span(), stream);
     gpu::launch_finish_scale(bar_partial.span(), problem->params.fscale, scale.data(), stream);
+  }
+
+  // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one when each step
+  // needs the host first (the bar measure of the exact scale, the atomic force sums). Returns
+  // how many ran; their results are in h_batch.
+  int run_steps(const StepRule& rule, int first_iteration, int limit) {
+    const Params& prm = problem->params;
+    const bool lagged =
+        lagged_scale && uniform && force_sum == ForceSum::kGather && bars.size() > 0;
+    if (!(lagged && scale_lagged_ok)) measure_bars(false);
+    if (!lagged || !step_graph) limit = 1;
+    limit = std::min(limit, gpu::kMaxBatchSteps);
+    if (force_sum == ForceSum::kAtomic) {
+      scattered.resize(2 * n);
+      MESHD_CUDA_CHECK(cudaMemsetAsync(scattered.data(), 0, 2 * n * sizeof(double), stream));
+      gpu::launch_scatter_bar_forces(p.span(), bars.span(), size.span(), uniform, scale.data(),
+                                     scattered.span(), stream);
+    } else {
+      scattered.resize(0);
+    }
+    step_partial.resize(std::min(gpu::blocks_for(n), step_wave));
+    gpu::StepBatch& b = *h_batch.get();
+    gpu::MoveArgs& a = b.args;
+    a.p = p.span();
+    a.p_next = p_next.span();
+    a.p_old = p_old.span();
+    a.velocity = velocity.span();
+    a.on_boundary = on_boundary.span();
+    a.csr_offset = csr_offset.span();
+    a.csr_entry = csr_entry.span();
+    a.csr_other = csr_other.span();
+    a.size = size.span();
+    a.uniform = uniform;
+    a.scattered = scattered.span();
+    a.scale = scale.data();
+    a.fd = fd;
+    a.nfix = nfix;
+    a.deltat = prm.deltat;
+    a.momentum = prm.momentum;
+    a.geps = prm.geps * problem->h0;
+    a.deps = prm.deps * problem->h0;
+    a.near_boundary = kNearBoundaryRelative * problem->h0;
+    a.partial = step_partial.span();
+    b.next_scale = lagged ? scale.data() : nullptr;
+    b.fscale = prm.fscale;
+    b.bars = static_cast<int64_t>(bars.size());
+    b.h0 = problem->h0;
+    b.rule = rule;
+    b.first_iteration = first_iteration;
+    b.limit = limit;
+    b.count = 0;
+    // Pinned memory, written only after the last run's copies finished (run_steps syncs).
+    constexpr size_t kHead = offsetof(gpu::StepBatch, results);
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(batch.data(), &b, kHead, cudaMemcpyHostToDevice, stream));
+    if (step_graph) {
+      step_graph->launch(stream);
+    } else {
+      gpu::launch_move_nodes(batch.data(), step_wave, stream);
+      gpu::launch_finish_step(batch.data(), nullptr, stream);
+    }
+    constexpr size_t kCount = offsetof(gpu::StepBatch, count);
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(
+        reinterpret_cast<char*>(&b) + kCount, reinterpret_cast<const char*>(batch.data()) + kCount,
+        kHead - kCount + limit * sizeof(StepResult), cudaMemcpyDeviceToHost, stream));
+    sync();
+    scale_lagged_ok = lagged;
+    // The device swapped the positions after each step.
+    if (b.count % 2 == 1) std::swap(p, p_next);
+    return b.count;
   }
 
   // ---- Step 3 ----
@@ -562,6 +636,11 @@ GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_uniq
   impl_->use_device();
   MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));
   impl_->step_wave = gpu::move_nodes_wave(device);
+  impl_->batch.resize(1);
+  // compute-sanitizer's racecheck crashes on graphs with conditional nodes: the variable runs the
+  // same kernels launched one by one under it.
+  const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");
+  set_step_graph(graph == nullptr || std::string(graph) != "0");
 }
 
 GpuEngine::~GpuEngine() {
@@ -710,57 +789,33 @@ void GpuEngine::remove_points(const std::vector<int32_t>& indices) {
 StepResult GpuEngine::move_points() {
   Impl& s = *impl_;
   s.use_device();
-  const Params& prm = s.problem->params;
-  const double h0 = s.problem->h0;
-  const bool lagged =
-      s.lagged_scale && s.uniform && s.force_sum == ForceSum::kGather && s.bars.size() > 0;
-  if (!(lagged && s.scale_lagged_ok)) s.measure_bars(false);
-  s.step_partial.resize(std::min(gpu::blocks_for(s.n), s.step_wave));
-  s.step_sums.resize(1);
-  if (s.force_sum == ForceSum::kAtomic) {
-    s.scattered.resize(2 * s.n);
-    MESHD_CUDA_CHECK(cudaMemsetAsync(s.scattered.data(), 0, 2 * s.n * sizeof(double), s.stream));
-    gpu::launch_scatter_bar_forces(s.p.span(), s.bars.span(), s.size.span(), s.uniform,
-                                   s.scale.data(), s.scattered.span(), s.stream);
-  } else {
-    s.scattered.resize(0);
+  s.run_steps(StepRule{}, 1, 1);  // one step: the rule does not matter
+  return s.h_batch.get()->results[0];
+}
+
+void GpuEngine::move_points_until(const StepRule& rule, int first_iteration, int limit,
+                                  std::vector<StepResult>& steps) {
+  Impl& s = *impl_;
+  s.use_device();
+  for (int done = 0; done < limit;) {
+    const int ran = s.run_steps(rule, first_iteration + done, limit - done);
+    const StepResult* results = s.h_batch.get()->results;
+    steps.insert(steps.end(), results, results + ran);
+    done += ran;
+    if (rule.stops(steps.back(), first_iteration + done - 1)) return;
   }
-  gpu::MoveArgs a{};
-  a.p = s.p.span();
-  a.p_next = s.p_next.span();
-  a.p_old = s.p_old.span();
-  a.velocity = s.velocity.span();
-  a.on_boundary = s.on_boundary.span();
-  a.csr_offset = s.csr_offset.span();
-  a.csr_entry = s.csr_entry.span();
-  a.csr_other = s.csr_other.span();
-  a.size = s.size.span();
-  a.uniform = s.uniform;
-  a.scattered = s.scattered.span();
-  a.scale = s.scale.data();
-  a.fd = s.fd;
-  a.nfix = s.nfix;
-  a.deltat = prm.deltat;
-  a.momentum = prm.momentum;
-  a.geps = prm.geps * h0;
-  a.deps = prm.deps * h0;
-  a.near_boundary = kNearBoundaryRelative * h0;
-  a.partial = s.step_partial.span();
-  gpu::launch_move_nodes(a, s.stream);
-  gpu::launch_finish_step(s.step_partial.span(), s.step_sums.data(),
-                          lagged ? s.scale.data() : nullptr, prm.fscale,
-                          static_cast<int64_t>(s.bars.size()), s.stream);
-  s.scale_lagged_ok = lagged;
-  MESHD_CUDA_CHECK(cudaMemcpyAsync(s.h_step.get(), s.step_sums.data(), sizeof(gpu::StepSums),
-                                   cudaMemcpyDeviceToHost, s.stream));
-  s.sync();
-  std::swap(s.p, s.p_next);
-  const gpu::StepSums& m = *s.h_step.get();
-  StepResult r;
-  r.max_move = m.max_move / h0;
-  r.max_drift = m.max_drift / h0;
-  r.rms_move = m.interior > 0 ? std::sqrt(m.sum_sq / m.interior) / h0 : 0.0;
-  return r;
+}
+
+int GpuEngine::preferred_batch() const { return impl_->step_graph ? gpu::kMaxBatchSteps : 1; }
+
+void GpuEngine::set_step_graph(bool on) {
+  Impl& s = *impl_;
+  s.use_device();
+  if (!on) {
+    s.step_graph.reset();
+  } else if (!s.step_graph) {
+    s.step_graph = std::make_unique<gpu::StepGraph>(s.batch.data(), s.step_wave, s.stream);
+  }
 }
 
 void GpuEngine::read_points(std::vector<Vec2>& points) {

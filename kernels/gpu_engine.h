@@ -54,12 +54,20 @@ class GpuEngine final : public Engine {
   // the CPU engine does (its last bits differ all the same: its sums run in another order).
   void set_lagged_scale(bool on);
 
+  // The step as a CUDA graph that runs up to 32 steps per host round trip (step_graph.h; the
+  // default, unless the environment sets MESHD_GPU_STEP_GRAPH=0), or its kernels launched one by
+  // one, one step per round trip (for comparison, and for tools that cannot follow the graph).
+  void set_step_graph(bool on);
+
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
   TopologyStats retriangulate(bool full) override;
   int64_t remove_crowded_points() override;
   StepResult move_points() override;
+  void move_points_until(const StepRule& rule, int first_iteration, int limit,
+                         std::vector<StepResult>& steps) override;
+  int preferred_batch() const override;
   void remove_points(const std::vector<int32_t>& indices) override;
   int64_t remove_boundary_slivers(const CompiledProblem& problem) override;
   int64_t node_count() const override;

@@ -9,6 +9,7 @@
 
 #include "core/common/vec2.h"
 #include "core/distmesh/initial_points.cuh"
+#include "core/distmesh/step_rule.cuh"
 #include "core/geometry/program.h"
 #include "core/geometry/size_program.h"
 #include "kernels/device_span.cuh"
@@ -112,13 +113,35 @@ struct MoveArgs {
 // on an H200). The count depends only on the node count and the device model: the same bits
 // every run on one kind of GPU.
 int64_t move_nodes_wave(int device);
-// Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
-void launch_move_nodes(const MoveArgs& args, cudaStream_t stream);
 
-// Sums the partials into *out. With next_scale, also the lagged L0 scale for the next step of a
-// uniform field, fscale * sqrt(sum L^2 / bars), from the lengths that this step measured.
-void launch_finish_step(DeviceSpan<const StepSums> partial, StepSums* out, double* next_scale,
-                        double fscale, int64_t bars, cudaStream_t stream);
+// A run of steps on the device, in device memory: step_graph.h runs move_nodes and finish_step
+// in a loop until finish_step says stop, with no host round trip in between. The host writes
+// everything before `count` and sets count to 0; finish_step counts the steps, writes their
+// results and swaps args.p and args.p_next after each, so that the next step starts from this
+// one's positions.
+constexpr int kMaxBatchSteps = 32;
+struct StepBatch {
+  MoveArgs args;       // partial.size: the blocks with nodes to move (at most move_nodes_wave)
+  double* next_scale;  // where to write the lagged L0 scale for the next step, or null
+  double fscale;
+  int64_t bars;
+  double h0;
+  StepRule rule;
+  int32_t first_iteration;  // the loop's number for the first step (step_rule.cuh)
+  int32_t limit;            // 1 to kMaxBatchSteps
+  int32_t count;
+  StepResult results[kMaxBatchSteps];
+};
+// Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
+// Always `blocks` blocks (move_nodes_wave), so that one captured graph fits every node count;
+// those past args.partial.size return at once.
+void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream);
+// Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
+// next step of a uniform field, fscale * sqrt(sum L^2 / bars), from the lengths that this step
+// measured. In the step graph (`more` given), sets the graph's loop condition to whether another
+// step follows: fewer than `limit` ran and the rule does not stop here.
+void launch_finish_step(StepBatch* batch, const cudaGraphConditionalHandle* more,
+                        cudaStream_t stream);
 
 // Step 6: keep[v] = 0 for both non-fixed ends of every bar with L0 > 2 L (keep starts at 1).
 void launch_mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,

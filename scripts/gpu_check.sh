@@ -19,15 +19,20 @@ for step in "${steps[@]}"; do
     sanitize)
       san=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
       filter='Geometries/GpuAgreement.OneStep*:Geometries/GpuAgreement.Density*:Geometries/GpuAgreement.Initial*:GpuEngine.*:*Repair*/1'
-      for tool in memcheck racecheck; do
-        # memcheck also over G5's whole mesh (node removal, completion); racecheck takes ten
-        # minutes there.
-        extra=; [ $tool = memcheck ] && extra=':*WholeMesh*/4'
-        LD_LIBRARY_PATH=$here/.gpu/lib "$san" --tool $tool --error-exitcode 1 \
-          "$here/.gpu/bin/kernels_gpu_engine_test" --gtest_filter="$filter$extra" \
-          > "$out/sanitizer_$tool.log" 2>&1
-        echo "compute-sanitizer $tool: exit $? ($(grep -c 'ERROR SUMMARY: 0' "$out/sanitizer_$tool.log") clean summaries)"
-        tail -3 "$out/sanitizer_$tool.log"
+      # memcheck with the step graph, also over whole meshes of G1 and G5 (node removal,
+      # completion). racecheck crashes on graphs with conditional nodes (compute-sanitizer
+      # 2025.3), so it runs the step's kernels launched one by one; over a whole mesh it takes ten
+      # minutes.
+      runs=("memcheck 1 $filter:*StepGraph*:*WholeMesh*/0:*WholeMesh*/4"
+            "racecheck 0 $filter")
+      for run_args in "${runs[@]}"; do
+        read -r tool graph tests <<< "$run_args"
+        log="$out/sanitizer_${tool}_graph$graph.log"
+        MESHD_GPU_STEP_GRAPH=$graph LD_LIBRARY_PATH=$here/.gpu/lib "$san" --tool $tool \
+          --error-exitcode 1 "$here/.gpu/bin/kernels_gpu_engine_test" --gtest_filter="$tests" \
+          > "$log" 2>&1
+        echo "compute-sanitizer $tool, step graph $graph: exit $? ($(grep -cE '(ERROR|RACECHECK) SUMMARY: 0' "$log") clean summaries)"
+        tail -3 "$log"
       done ;;
     profile)
       # Seconds per phase of the GPU engine at the issue's two sizes (best of 3).
@@ -41,6 +46,11 @@ for step in "${steps[@]}"; do
       for n in 20000 100000 1000000 4000000; do
         repeat=3; [ $n -gt 1000000 ] && repeat=1
         $run meshbench --backend gpu --repeat $repeat --nodes $n $req 2>&1 | tee -a "$out/bench_gpu.log"
+      done
+      # The step's kernels launched one by one, one step per host round trip, against the graph.
+      for n in 20000 1000000; do
+        $run meshbench --backend gpu --no-step-graph --repeat 3 --nodes $n $req 2>&1 |
+          tee -a "$out/bench_no_graph.log"
       done
       # The step that measures the bars first, as the CPU engine does (the default takes the L0
       # scale from the step before).

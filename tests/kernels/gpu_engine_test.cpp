@@ -113,6 +113,74 @@ TEST_P(GpuAgreement, OneStepOnRandomPointsMatchesTheCpu) {
   }
 }
 
+// The step graph runs a batch of steps on the device: the same bits as the same kernels
+// launched one by one, one step per call, and it stops exactly after the first step at which the
+// loop's rule stops (the positions swap after every step, so an odd count checks the hand-back
+// as well).
+TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 3000);
+  const auto pts = random_points(c, 3000, 7);
+  for (const bool lagged : {true, false}) {
+    for (const double ttol : {1e9, 0.03}) {
+      GpuEngine graph(0), direct(0);
+      graph.set_step_graph(true);
+      direct.set_step_graph(false);
+      EXPECT_EQ(graph.preferred_batch(), 32);
+      EXPECT_EQ(direct.preferred_batch(), 1);
+      for (GpuEngine* e : {&graph, &direct}) {
+        e->set_lagged_scale(lagged);
+        e->load_points(c, pts);
+        e->retriangulate(true);
+      }
+      StepRule rule;
+      rule.ttol = ttol;
+      rule.min_iterations = 1 << 30;  // never converged
+      std::vector<StepResult> steps;
+      graph.move_points_until(rule, 1, 40, steps);
+      std::vector<StepResult> expected;
+      for (int k = 0; k < 40; ++k) {
+        expected.push_back(direct.move_points());
+        if (rule.stops(expected.back(), 1 + k)) break;
+      }
+      const std::string where =
+          "lagged " + std::to_string(lagged) + " ttol " + std::to_string(ttol);
+      ASSERT_EQ(steps.size(), expected.size()) << where;
+      if (ttol > 1.0) {
+        EXPECT_EQ(steps.size(), 40u) << where;
+      } else {
+        EXPECT_LT(steps.size(), 40u) << where << ": the drift test never stopped the batch";
+      }
+      for (size_t k = 0; k < steps.size(); ++k) {
+        EXPECT_EQ(steps[k].max_move, expected[k].max_move) << where << " step " << k;
+        EXPECT_EQ(steps[k].max_drift, expected[k].max_drift) << where << " step " << k;
+        EXPECT_EQ(steps[k].rms_move, expected[k].rms_move) << where << " step " << k;
+      }
+      std::vector<Vec2> a, b;
+      graph.read_points(a);
+      direct.read_points(b);
+      EXPECT_EQ(a, b) << where;
+    }
+  }
+}
+
+// The loop asks the graph for batches of steps (engine.h): the whole job runs the same
+// iterations and gives the same mesh, bit for bit, as with one step per round trip.
+TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 5000);
+  GpuEngine graph(0), direct(0);
+  graph.set_step_graph(true);
+  direct.set_step_graph(false);
+  const MeshResult a = generate_mesh(c, graph, nullptr, nullptr);
+  const MeshResult b = generate_mesh(c, direct, nullptr, nullptr);
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+  EXPECT_EQ(a.stats.cleanup_iterations, b.stats.cleanup_iterations);
+  EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+}
+
 // The repaired triangulation must be Delaunay: every kept triangle counter-clockwise and every
 // edge between two kept triangles locally Delaunay (exact predicates), with as many triangles as
 // CGAL's rebuild of the same points, up to the collapsed boundary slivers a repair drops.
