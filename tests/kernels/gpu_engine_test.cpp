@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <random>
 #include <set>
@@ -54,6 +55,15 @@ std::vector<Vec2> random_points(const CompiledProblem& c, size_t count, uint32_t
     if (eval_sdf(c.geometry.view(), q) < 0.0) pts.push_back(q);
   }
   return pts;
+}
+
+// Loads `pts` into each engine and triangulates them from scratch.
+void load_and_triangulate(const CompiledProblem& c, const std::vector<Vec2>& pts,
+                          std::initializer_list<Engine*> engines) {
+  for (Engine* e : engines) {
+    e->load_points(c, pts);
+    e->retriangulate(true);
+  }
 }
 
 class GpuAgreement : public ::testing::TestWithParam<std::string> {};
@@ -128,11 +138,9 @@ TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
       direct.set_step_graph(false);
       EXPECT_EQ(graph.preferred_batch(), 32);
       EXPECT_EQ(direct.preferred_batch(), 1);
-      for (GpuEngine* e : {&graph, &direct}) {
-        e->set_lagged_scale(lagged);
-        e->load_points(c, pts);
-        e->retriangulate(true);
-      }
+      graph.set_lagged_scale(lagged);
+      direct.set_lagged_scale(lagged);
+      load_and_triangulate(c, pts, {&graph, &direct});
       StepRule rule;
       rule.ttol = ttol;
       rule.min_iterations = 1 << 30;  // never converged
@@ -238,10 +246,7 @@ TEST_P(GpuAgreement, DensityControlRemovesTheSamePoints) {
   const auto pts = random_points(c, 4000, 7);
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
-  cpu.load_points(c, pts);
-  gpu.load_points(c, pts);
-  cpu.retriangulate(true);
-  gpu.retriangulate(true);
+  load_and_triangulate(c, pts, {&cpu, &gpu});
   const int64_t rc = cpu.remove_crowded_points(), rg = gpu.remove_crowded_points();
   EXPECT_GT(rc, 0);
   EXPECT_EQ(rc, rg);
@@ -270,10 +275,7 @@ TEST_P(GpuAgreement, CleanupRemovesTheSameSlivers) {
   relax.read_points(pts);
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
-  cpu.load_points(c, pts);
-  gpu.load_points(c, pts);
-  cpu.retriangulate(true);
-  gpu.retriangulate(true);
+  load_and_triangulate(c, pts, {&cpu, &gpu});
   const int64_t rc = cpu.remove_boundary_slivers(c), rg = gpu.remove_boundary_slivers(c);
   EXPECT_EQ(rc, rg);
   if (GetParam() == "G5") {
@@ -325,10 +327,7 @@ TEST_P(GpuAgreement, AtomicForceSumsAgreeWithTheGather) {
   const auto pts = random_points(c, 3000, 11);
   GpuEngine gather(0), atomic(0);
   atomic.set_force_sum(GpuEngine::ForceSum::kAtomic);
-  gather.load_points(c, pts);
-  atomic.load_points(c, pts);
-  gather.retriangulate(true);
-  atomic.retriangulate(true);
+  load_and_triangulate(c, pts, {&gather, &atomic});
   const StepResult sg = gather.move_points(), sa = atomic.move_points();
   EXPECT_NEAR(sg.rms_move, sa.rms_move, 1e-9);
   std::vector<Vec2> a, b;

@@ -5,44 +5,34 @@
 
 #include "core/common/thread_pool.h"
 #include "core/distmesh/cpu_engine.h"
+#include "tests/core/distmesh/forwarding_engine.h"
 
 namespace meshd::testing {
 
 namespace {
 
-// Forwards everything to a CpuEngine; subclasses hook the calls they need.
-class ForwardingEngine : public Engine, public WorkerEngine {
- public:
-  ForwardingEngine() : pool_(1), cpu_(pool_) {}
-  Engine& engine() override { return *this; }
-  std::string device() const override { return "test cpu"; }
-
-  const char* name() const override { return "test"; }
-  int64_t initialize(const CompiledProblem& p) override { return cpu_.initialize(p); }
-  int64_t load_points(const CompiledProblem& p, const std::vector<Vec2>& pts) override {
-    return cpu_.load_points(p, pts);
-  }
-  TopologyStats retriangulate(bool full) override { return cpu_.retriangulate(full); }
-  int64_t remove_crowded_points() override { return cpu_.remove_crowded_points(); }
-  StepResult move_points() override { return cpu_.move_points(); }
-  void remove_points(const std::vector<int32_t>& i) override { cpu_.remove_points(i); }
-  int64_t node_count() const override { return cpu_.node_count(); }
-  void read_points(std::vector<Vec2>& p) override { cpu_.read_points(p); }
-  void read_triangles(std::vector<std::array<int32_t, 3>>& t) override { cpu_.read_triangles(t); }
-
- protected:
-  ThreadPool pool_;
-  CpuEngine cpu_;
+// A one-thread pool, constructed before the engine that uses it.
+struct OneThread {
+  ThreadPool pool_{1};
 };
 
-class GatedEngine final : public ForwardingEngine {
+// The CPU engine (1 thread) as a worker's engine; subclasses hook the calls they need.
+class WorkerTestEngine : private OneThread, public ForwardingEngine, public WorkerEngine {
+ public:
+  WorkerTestEngine() : ForwardingEngine(pool_) {}
+  Engine& engine() override { return *this; }
+  std::string device() const override { return "test cpu"; }
+  const char* name() const override { return "test"; }
+};
+
+class GatedEngine final : public WorkerTestEngine {
  public:
   GatedEngine(std::shared_ptr<Gate> gate, bool gate_warm_up)
       : gate_(std::move(gate)), pass_next_(!gate_warm_up) {}
   int64_t initialize(const CompiledProblem& p) override {
     if (!pass_next_) gate_->wait();
     pass_next_ = false;
-    return ForwardingEngine::initialize(p);
+    return WorkerTestEngine::initialize(p);
   }
 
  private:
@@ -50,13 +40,13 @@ class GatedEngine final : public ForwardingEngine {
   bool pass_next_;
 };
 
-class FailingEngine final : public ForwardingEngine {
+class FailingEngine final : public WorkerTestEngine {
  public:
   FailingEngine(ErrorCode code, int fail_at) : code_(code), fail_at_(fail_at) {}
   int64_t initialize(const CompiledProblem& p) override {
     steps_ = 0;
     ++jobs_;
-    return ForwardingEngine::initialize(p);
+    return WorkerTestEngine::initialize(p);
   }
   StepResult move_points() override {
     if (jobs_ > 1 && !failed_ && ++steps_ == fail_at_) {
@@ -64,7 +54,7 @@ class FailingEngine final : public ForwardingEngine {
       if (code_ == ErrorCode::kInternal) throw std::runtime_error("simulated device fault");
       throw Error(code_, "", "simulated: out of memory on the device");
     }
-    return ForwardingEngine::move_points();
+    return WorkerTestEngine::move_points();
   }
 
  private:

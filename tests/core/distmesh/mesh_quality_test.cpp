@@ -21,6 +21,7 @@
 #include "core/mesh/quality.h"
 #include "core/mesh/validity.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
+#include "tests/core/distmesh/forwarding_engine.h"
 
 namespace meshd {
 namespace {
@@ -346,35 +347,17 @@ TEST(GenerateMesh, ProgressIterationsKeepIncreasingThroughTheCleanup) {
 }
 
 // The CPU engine asked for its steps in batches, as the loop asks the GPU engine (engine.h).
-class BatchingEngine final : public Engine {
+class BatchingEngine final : public testing::ForwardingEngine {
  public:
-  explicit BatchingEngine(ThreadPool& pool) : cpu_(pool) {}
-  const char* name() const override { return "cpu in batches"; }
-  int64_t initialize(const CompiledProblem& p) override { return cpu_.initialize(p); }
-  int64_t load_points(const CompiledProblem& p, const std::vector<Vec2>& pts) override {
-    return cpu_.load_points(p, pts);
-  }
-  TopologyStats retriangulate(bool full) override { return cpu_.retriangulate(full); }
-  int64_t remove_crowded_points() override { return cpu_.remove_crowded_points(); }
-  StepResult move_points() override { return cpu_.move_points(); }
+  using ForwardingEngine::ForwardingEngine;
   void move_points_until(const StepRule& rule, int first_iteration, int limit,
                          std::vector<StepResult>& steps) override {
     if (limit > 1) ++batches;
     Engine::move_points_until(rule, first_iteration, limit, steps);
   }
   int preferred_batch() const override { return 7; }
-  void remove_points(const std::vector<int32_t>& indices) override { cpu_.remove_points(indices); }
-  int64_t remove_boundary_slivers(const CompiledProblem& p) override {
-    return cpu_.remove_boundary_slivers(p);
-  }
-  int64_t node_count() const override { return cpu_.node_count(); }
-  void read_points(std::vector<Vec2>& points) override { cpu_.read_points(points); }
-  void read_triangles(std::vector<std::array<int32_t, 3>>& t) override { cpu_.read_triangles(t); }
 
   int batches = 0;  // calls for more than one step
-
- private:
-  CpuEngine cpu_;
 };
 
 // Batches of steps must run exactly the loop of one step at a time: the same iterations,
