@@ -204,11 +204,13 @@ struct GpuEngine::Impl {
     sync();  // fixed_boundary is a stack buffer
   }
 
-  // Keeps the nodes with flags[i] = 1, in order. Returns how many went.
+  // Keeps the nodes with flags[i] = 1, in order. Returns how many went; with none, leaves the
+  // nodes and their triangulation as they are.
   int64_t compact_nodes() {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
     const int64_t kept = last_total(position, flags);
+    if (kept == n) return 0;
     // The triangles untouched by the removal survive, renumbered, with their links: the next
     // full triangulation completes them (complete_triangulation.h) instead of starting over.
     Triangulation survivors;
@@ -302,9 +304,10 @@ struct GpuEngine::Impl {
     gpu::launch_finish_scale(bar_partial.span(), problem->params.fscale, scale.data(), stream);
   }
 
-  // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one when each step
-  // needs the host first (the bar measure of the exact scale, the atomic force sums). Returns
-  // how many ran; their results are in h_batch.
+  // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one, launched
+  // directly, when each step needs the host first (the bar measure of the exact scale and of
+  // graded fields, the atomic force sums) or without the graph. Returns how many ran; their
+  // results are in h_batch.
   int run_steps(const StepRule& rule, int first_iteration, int limit) {
     const Params& prm = problem->params;
     const bool lagged =
@@ -756,9 +759,6 @@ int64_t GpuEngine::remove_crowded_points() {
   MESHD_CUDA_CHECK(cudaMemsetAsync(s.flags.data(), 1, s.n, s.stream));
   gpu::launch_mark_crowded(s.bars.span(), s.length.span(), s.size.span(), s.scale.data(), s.nfix,
                            s.flags.span(), s.stream);
-  s.position.resize(s.n);
-  gpu::exclusive_scan(s.flags.data(), s.position.data(), s.n, s.temp, s.stream);
-  if (s.last_total(s.position, s.flags) == s.n) return 0;
   return s.compact_nodes();
 }
 
@@ -772,9 +772,6 @@ int64_t GpuEngine::remove_boundary_slivers(const CompiledProblem& problem) {
   gpu::launch_mark_boundary_slivers(s.p.span(), s.tris.span(), s.keep.span(), s.fd,
                                     problem.params.geps * problem.h0, s.nfix, s.flags.span(),
                                     s.stream);
-  s.position.resize(s.n);
-  gpu::exclusive_scan(s.flags.data(), s.position.data(), s.n, s.temp, s.stream);
-  if (s.last_total(s.position, s.flags) == s.n) return 0;
   return s.compact_nodes();
 }
 
