@@ -60,7 +60,9 @@ __global__ void finish_scale(DeviceSpan<const BarSums> partial, double fscale, d
   for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x)
     sums = SumPair{}(sums, partial[i]);
   const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
-  if (threadIdx.x == 0) *scale = total.h2 > 0.0 ? fscale * sqrt(total.l2 / total.h2) : 0.0;
+  if (threadIdx.x != 0) return;
+  scale[0] = total.h2 > 0.0 ? fscale * sqrt(total.l2 / total.h2) : 0.0;
+  scale[1] = total.h2;  // for the lagged scale of the steps until the next triangulation
 }
 
 // Gathers the far ends of CSR entries [k, end) a few at a time: their loads are independent, and
@@ -74,7 +76,7 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   const bool gather = a.scattered.size == 0;
   const double scale = *a.scale;
   Vec2 total{0.0, 0.0};
-  double l2 = 0.0;
+  double l2 = 0.0, size_sum = 0.0;
   if (!gather) total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
   const int32_t begin = gather ? a.csr_offset[i] : 0, end = gather ? a.csr_offset[i + 1] : 0;
   for (int32_t k = begin; k < end; k += kGatherBatch) {
@@ -92,6 +94,7 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
       l2 += len * len;
       if (i < a.nfix) continue;  // fixed nodes: their bars count towards the lagged scale only
       const double h = a.uniform ? 1.0 : a.size[a.csr_entry[k + j] >> 1];
+      size_sum += h;
       const double f = fmax(h * scale - len, 0.0);
       total = total + (len > 0.0 ? (f / len) * v : Vec2{0.0, 0.0});
     }
@@ -108,9 +111,11 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
   a.on_boundary[i] = d >= -a.near_boundary;
   a.p_next[i] = q;
-  const double move2 = dot(step, step);
-  if (d < -a.geps) measures = {sqrt(move2), 0.0, move2, 1.0, l2};
-  measures.max_drift = norm(q - a.p_old[i]);
+  // Moves are measured in the node's own size (step_rule.cuh): h0 * the mean h of its bars.
+  const double unit = end > begin ? a.h0 * (size_sum / (end - begin)) : a.h0;
+  const double move = norm(step) / unit;
+  if (d < -a.geps) measures = {move, 0.0, move * move, 1.0, l2};
+  measures.max_drift = norm(q - a.p_old[i]) / unit;
   return measures;
 }
 
@@ -166,12 +171,13 @@ __global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditiona
   if (threadIdx.x != 0) return;
   StepBatch& b = *batch;
   // Each bar was measured from both ends.
-  if (b.next_scale != nullptr && b.bars > 0)
-    *b.next_scale = b.fscale * sqrt(0.5 * total.bar_l2 / static_cast<double>(b.bars));
+  // next_scale[1] is sum h^2 over the bars, which stays as measured until the next triangulation.
+  if (b.next_scale != nullptr && b.next_scale[1] > 0.0)
+    b.next_scale[0] = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
   StepResult r;
-  r.max_move = total.max_move / b.h0;
-  r.max_drift = total.max_drift / b.h0;
-  r.rms_move = total.interior > 0.0 ? sqrt(total.sum_sq / total.interior) / b.h0 : 0.0;
+  r.max_move = total.max_move;
+  r.max_drift = total.max_drift;
+  r.rms_move = total.interior > 0.0 ? sqrt(total.sum_sq / total.interior) : 0.0;
   const int32_t k = b.count++;
   b.results[k] = r;
   Vec2* const moved = b.args.p_next.data;

@@ -298,20 +298,20 @@ struct GpuEngine::Impl {
     length.resize(for_density_control ? nb : 0);
     size.resize(store_size ? nb : 0);
     bar_partial.resize(gpu::reduce_blocks_for(nb));
-    scale.resize(1);
+    scale.resize(2);
     gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
                              bar_partial.span(), stream);
     gpu::launch_finish_scale(bar_partial.span(), problem->params.fscale, scale.data(), stream);
   }
 
   // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one, launched
-  // directly, when each step needs the host first (the bar measure of the exact scale and of
-  // graded fields, the atomic force sums) or without the graph. Returns how many ran; their
-  // results are in h_batch.
+  // directly, when each step needs the host first (the bar measure of the exact scale, the
+  // atomic force sums) or without the graph. A graded field's sizes are measured once per
+  // topology, at the first step after a triangulation, as the CPU engine does. Returns how many
+  // ran; their results are in h_batch.
   int run_steps(const StepRule& rule, int first_iteration, int limit) {
     const Params& prm = problem->params;
-    const bool lagged =
-        lagged_scale && uniform && force_sum == ForceSum::kGather && bars.size() > 0;
+    const bool lagged = lagged_scale && force_sum == ForceSum::kGather && bars.size() > 0;
     if (!(lagged && scale_lagged_ok)) measure_bars(false);
     if (!lagged || !step_graph) limit = 1;
     limit = std::min(limit, gpu::kMaxBatchSteps);
@@ -340,6 +340,7 @@ struct GpuEngine::Impl {
     a.scale = scale.data();
     a.fd = fd;
     a.nfix = nfix;
+    a.h0 = problem->h0;
     a.deltat = prm.deltat;
     a.momentum = prm.momentum;
     a.geps = prm.geps * problem->h0;
@@ -348,8 +349,6 @@ struct GpuEngine::Impl {
     a.partial = step_partial.span();
     b.next_scale = lagged ? scale.data() : nullptr;
     b.fscale = prm.fscale;
-    b.bars = static_cast<int64_t>(bars.size());
-    b.h0 = problem->h0;
     b.rule = rule;
     b.first_iteration = first_iteration;
     b.limit = limit;

@@ -77,7 +77,8 @@ void launch_compact_points(DeviceSpan<const Vec2> in, DeviceSpan<const uint8_t> 
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                          DeviceSpan<BarSums> partial, cudaStream_t stream);
-// *scale = fscale * sqrt(sum L^2 / sum h^2), summing the partials in a fixed order.
+// scale[0] = fscale * sqrt(sum L^2 / sum h^2) and scale[1] = sum h^2, summing the partials in a
+// fixed order.
 void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
                          cudaStream_t stream);
 
@@ -102,7 +103,7 @@ struct MoveArgs {
   const double* scale;
   ProgramView fd;
   int64_t nfix;
-  double deltat, momentum, geps, deps, near_boundary;
+  double h0, deltat, momentum, geps, deps, near_boundary;
   // One per block, and as many blocks (at most move_nodes_wave): max move, max drift, sum of
   // move^2, interior count, sum of bar L^2.
   DeviceSpan<StepSums> partial;
@@ -121,11 +122,11 @@ int64_t move_nodes_wave(int device);
 // one's positions.
 constexpr int kMaxBatchSteps = 32;
 struct StepBatch {
-  MoveArgs args;       // partial.size: the blocks with nodes to move (at most move_nodes_wave)
-  double* next_scale;  // where to write the lagged L0 scale for the next step, or null
+  MoveArgs args;  // partial.size: the blocks with nodes to move (at most move_nodes_wave)
+  // The lagged L0 scale for the next step is written to next_scale[0] (null: none), from
+  // next_scale[1] = sum h^2 over the bars.
+  double* next_scale;
   double fscale;
-  int64_t bars;
-  double h0;
   StepRule rule;
   int32_t first_iteration;  // the loop's number for the first step (step_rule.cuh)
   int32_t limit;            // 1 to kMaxBatchSteps
@@ -137,9 +138,10 @@ struct StepBatch {
 // those past args.partial.size return at once.
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream);
 // Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
-// next step of a uniform field, fscale * sqrt(sum L^2 / bars), from the lengths that this step
-// measured. In the step graph (`more` given), sets the graph's loop condition to whether another
-// step follows: fewer than `limit` ran and the rule does not stop here.
+// next step, fscale * sqrt(sum L^2 / sum h^2), from the lengths that this step measured and the
+// sizes measured at the triangulation (next_scale[1]). In the step graph (`more` given), sets the
+// graph's loop condition to whether another step follows: fewer than `limit` ran and the rule does
+// not stop here.
 void launch_finish_step(StepBatch* batch, const cudaGraphConditionalHandle* more,
                         cudaStream_t stream);
 

@@ -10,7 +10,7 @@ namespace meshd {
 namespace {
 
 // Retries after a failed check, each without the triangles next to a gap.
-constexpr int kMaxErosions = 2;
+constexpr int kMaxErosions = 4;
 
 // Appends the gaps' triangles to `out` (U's triangles and neighbours) and links them to U and
 // to each other. Returns false, with `out` as it came, when a check fails.

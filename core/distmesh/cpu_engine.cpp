@@ -95,6 +95,7 @@ TopologyStats CpuEngine::retriangulate(bool full) {
   for (size_t t = 0; t < dt_.triangles.size(); ++t)
     if (keep[t]) triangles_.push_back(dt_.triangles[t]);
   bars_ = edges_of_kept(dt_, keep);
+  bar_size_.clear();  // measured again at the new bars' midpoints
   build_bar_csr();
   pold_ = p_;
   stats.triangles = static_cast<int64_t>(triangles_.size());
@@ -123,6 +124,10 @@ void CpuEngine::build_bar_csr() {
 double CpuEngine::measure_bars() {
   const size_t nb = bars_.size();
   bar_length_.resize(nb);
+  // A graded field's sizes are evaluated at the bar midpoints once per topology: between two
+  // triangulations no node moves more than ttol of its size, so h barely changes, and the
+  // evaluation (an ellipse's or a polygon's distance) costs more than the rest of the step.
+  const bool measure_size = bar_size_.size() != nb;
   bar_size_.resize(nb);
   const SizeView fh = problem_->size.view();
   const bool uniform = problem_->size.uniform();
@@ -133,9 +138,9 @@ double CpuEngine::measure_bars() {
     for (size_t b = begin; b < end; ++b) {
       const Vec2 a = p_[bars_[b][0]], e = p_[bars_[b][1]];
       const double len = norm(a - e);
-      const double h = uniform ? 1.0 : eval_size(fh, 0.5 * (a + e));
+      if (measure_size) bar_size_[b] = uniform ? 1.0 : eval_size(fh, 0.5 * (a + e));
+      const double h = bar_size_[b];
       bar_length_[b] = len;
-      bar_size_[b] = h;
       l2 += len * len;
       h2 += h * h;
     }
@@ -226,13 +231,16 @@ StepResult CpuEngine::move_points() {
     for (size_t i = begin; i < end; ++i) {
       if (static_cast<int64_t>(i) < nfix_) continue;  // fixed nodes stay exactly where they are
       Vec2 total{};
-      {
-        for (int32_t k = csr_offset_[i]; k < csr_offset_[i + 1]; ++k) {
-          const int32_t e = csr_entry_[k];
-          const Vec2 f = bar_force_[e >> 1];
-          total = (e & 1) ? total - f : total + f;
-        }
+      double size_sum = 0.0;
+      for (int32_t k = csr_offset_[i]; k < csr_offset_[i + 1]; ++k) {
+        const int32_t e = csr_entry_[k];
+        const Vec2 f = bar_force_[e >> 1];
+        total = (e & 1) ? total - f : total + f;
+        size_sum += bar_size_[e >> 1];
       }
+      // Moves are measured in the node's own size (step_rule.cuh): h0 * the mean h of its bars.
+      const int32_t degree = csr_offset_[i + 1] - csr_offset_[i];
+      const double unit = degree > 0 ? h0 * (size_sum / degree) : h0;
       // Heavy-ball momentum: the previous step carries over, scaled (params.h).
       const Vec2 step = prm.deltat * total + prm.momentum * velocity_[i];
       velocity_[i] = step;
@@ -241,12 +249,13 @@ StepResult CpuEngine::move_points() {
       if (d > 0.0) q = project_step(fd, q, d, deps);
       on_boundary_[i] = d >= -kNearBoundaryRelative * h0;
       if (d < -geps) {
-        sq += dot(step, step);
+        const double move = norm(step) / unit;
+        sq += move * move;
+        max_move = std::max(max_move, move);
         ++interior;
       }
-      if (d < -geps) max_move = std::max(max_move, norm(step));
       p_[i] = q;
-      max_drift = std::max(max_drift, norm(q - pold_[i]));
+      max_drift = std::max(max_drift, norm(q - pold_[i]) / unit);
     }
     chunk_move[c] = max_move;
     chunk_drift[c] = max_drift;
@@ -260,10 +269,10 @@ StepResult CpuEngine::move_points() {
     sq += chunk_sq[c];
     interior += chunk_interior[c];
   }
-  r.rms_move = interior > 0 ? std::sqrt(sq / interior) / h0 : 0.0;
+  r.rms_move = interior > 0 ? std::sqrt(sq / interior) : 0.0;
   for (size_t c = 0; c < chunks; ++c) {
-    r.max_move = std::max(r.max_move, chunk_move[c] / h0);
-    r.max_drift = std::max(r.max_drift, chunk_drift[c] / h0);
+    r.max_move = std::max(r.max_move, chunk_move[c]);
+    r.max_drift = std::max(r.max_drift, chunk_drift[c]);
   }
   return r;
 }

@@ -7,10 +7,14 @@
 
 namespace meshd {
 
+// Every length is measured in the node's own size, h0 times the mean h of its bars: a node that
+// moves a tenth of its edges does so in a fine region and in a coarse one alike. Measured in h0,
+// the coarse regions of a graded field (edges up to h_max h0) retriangulated and kept the loop
+// running several times as long as they needed to, for nothing a finer region could notice.
 struct StepResult {
-  double max_move = 0.0;   // largest move of an interior node (d < -geps) this step, / h0
-  double max_drift = 0.0;  // largest |p - p_at_last_triangulation| after the step, / h0
-  double rms_move = 0.0;   // root mean square of the interior moves, / h0
+  double max_move = 0.0;   // largest move of an interior node (d < -geps) this step
+  double max_drift = 0.0;  // largest |p - p_at_last_triangulation| after the step
+  double rms_move = 0.0;   // root mean square of the interior moves
 };
 
 struct StepRule {
