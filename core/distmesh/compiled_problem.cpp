@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/common/error.h"
+#include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
@@ -27,12 +28,15 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
   // Corners of the final boundary evaluate to 0 up to rounding in the primitives' parameters.
   const double tol = 1e-10 * box_diameter(bbox);
   std::vector<Vec2> corners;
+  auto add_if_on_boundary = [&](Vec2 v) {
+    if (std::fabs(eval_sdf(geometry.view(), v)) <= tol) add_unique(corners, v, tol);
+  };
   for (const PrimitiveInfo& prim : geometry.primitives) {
-    for (size_t i = 0; i + 1 < prim.corners.size(); i += 2) {
-      const Vec2 v{prim.corners[i], prim.corners[i + 1]};
-      if (std::fabs(eval_sdf(geometry.view(), v)) <= tol) add_unique(corners, v, tol);
-    }
+    for (size_t i = 0; i + 1 < prim.corners.size(); i += 2)
+      add_if_on_boundary({prim.corners[i], prim.corners[i + 1]});
   }
+  // Where two primitives' boundaries cross on the final boundary, it turns: a corner too.
+  for (Vec2 v : boundary_crossings(geometry, bbox)) add_if_on_boundary(v);
   return corners;
 }
 

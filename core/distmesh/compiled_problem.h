@@ -25,7 +25,8 @@ struct CompiledProblem {
 // unbounded without a bbox, the bbox or domain is empty, or a fixed point lies outside.
 CompiledProblem compile_problem(const Problem& problem);
 
-// Polygon and rectangle corners of `geometry` that lie on its final boundary (|d| tiny).
+// The corners of `geometry`'s final boundary (|d| tiny there): polygon and rectangle vertices,
+// and the crossings of two primitives' boundaries (boundary_crossings.h).
 std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox);
 
 }  // namespace meshd

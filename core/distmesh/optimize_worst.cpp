@@ -41,6 +41,7 @@ class Optimizer {
             const std::vector<std::array<int32_t, 3>>& triangles,
             const std::vector<int32_t>& boundary)
       : fd_(problem.geometry.view()),
+        h0_(problem.h0),
         deps_(problem.params.deps * problem.h0),
         nfix_(static_cast<int32_t>(problem.fixed_points.size())),
         p_(points),
@@ -52,11 +53,11 @@ class Optimizer {
   }
 
   int64_t run() {
+    int64_t moves = snap_to_boundary();
     // good[t]: t's quality was at least the threshold when last measured and none of its nodes
     // has moved since, so measuring it again would give the same value. Each pass then measures
     // only the few triangles near moved nodes instead of all of them, with the same result.
     std::vector<char> good(t_.size(), 0);
-    int64_t moves = 0;
     for (int pass = 0; pass < kPasses; ++pass) {
       int64_t pass_moves = 0;
       for (size_t t = 0; t < t_.size(); ++t) {
@@ -78,6 +79,23 @@ class Optimizer {
   }
 
  private:
+  // Puts the nodes of the mesh's boundary that lie off the domain's boundary onto it, where
+  // their star stays valid. Such a node sags between two neighbours on the boundary that are
+  // too far apart for one node at full length and too close for two: next to a concave corner
+  // the Delaunay edge across the corner is dropped with its triangle, and the node, pushed
+  // inward by both, settles up to half an edge inside.
+  int64_t snap_to_boundary() {
+    int64_t moves = 0;
+    for (int32_t v = nfix_; v < static_cast<int32_t>(p_.size()); ++v) {
+      if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
+      const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
+      if (std::fabs(eval_sdf(fd_, x)) > kSnapTolerance * h0_ || star_quality(v, x) <= 0.0) continue;
+      p_[v] = x;
+      ++moves;
+    }
+    return moves;
+  }
+
   double quality(int32_t t) const {
     const auto& tri = t_[t];
     const Vec2 a = p_[tri[0]], b = p_[tri[1]], c = p_[tri[2]];
@@ -151,7 +169,10 @@ class Optimizer {
     return !(p_[v] == start);
   }
 
+  // Boundary nodes farther than this (times h0) from the boundary are snapped onto it.
+  static constexpr double kSnapTolerance = 1e-4;
   ProgramView fd_;
+  double h0_;
   double deps_;
   int32_t nfix_;
   std::vector<Vec2>& p_;

@@ -6,7 +6,9 @@
 // worst triangle around it is best: interior nodes in the plane, boundary nodes along the
 // boundary (re-projected onto it). A move is taken only when it raises the minimum quality of
 // the node's star and keeps every triangle there positively oriented, so the mesh stays valid,
-// the worst element can only improve, and the rest of the mesh is untouched.
+// the worst element can only improve, and the rest of the mesh is untouched. Before that, nodes
+// of the mesh's boundary that lie off the domain's boundary (a node sagging next to a concave
+// corner) are projected onto it wherever their star stays valid.
 #pragma once
 
 #include <array>

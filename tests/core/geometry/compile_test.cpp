@@ -1,5 +1,4 @@
-// compile_geometry (postfix layout, names, the stack limit), program_bounds and the detection
-// of boundary corners.
+// compile_geometry (postfix layout, names, the stack limit) and program_bounds.
 #include "core/geometry/compile.h"
 
 #include <gtest/gtest.h>
@@ -14,30 +13,17 @@
 #include "core/distmesh/compiled_problem.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/sdf_eval.cuh"
+#include "tests/core/geometry/shape_builders.h"
 
 namespace meshd {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Shape csg(CsgOp op, std::vector<Shape> operands, std::string path = "") {
-  return Shape{Csg{op, std::move(operands)}, "", std::move(path)};
-}
-
-Shape transformed(Shape inner, double scale, double angle, Vec2 offset) {
-  Transformed t;
-  t.transform = {scale, angle, offset};
-  t.operand.push_back(std::move(inner));
-  return Shape{std::move(t), "", ""};
-}
-
-Shape circle(Vec2 c, double r, std::string name = "") {
-  return Shape{Circle{c, r}, std::move(name), ""};
-}
-
-Shape rectangle(Vec2 lo, Vec2 hi, std::string name = "") {
-  return Shape{Rectangle{lo, hi}, std::move(name), ""};
-}
+using testing::circle;
+using testing::csg;
+using testing::rectangle;
+using testing::transformed;
 
 std::vector<Op> ops(const Program& p) {
   std::vector<Op> out;
@@ -298,58 +284,6 @@ TEST(ProgramBounds, RotatedShapes) {
   const Box tri = program_bounds(compile_geometry(
       transformed(Shape{Polygon{{{0, 0}, {1, 0}, {0, 1}}}, "", ""}, 1, kPi / 2, {0, 0})));
   expect_box(tri, {{-1, 0}, {0, 1}});
-}
-
-// ---- Boundary corners ---------------------------------------------------------------------------
-
-std::vector<Vec2> corners_of(const Shape& s) {
-  const Program p = compile_geometry(s);
-  return boundary_corners(p, program_bounds(p));
-}
-
-bool contains(const std::vector<Vec2>& pts, Vec2 q, double tol = 1e-12) {
-  return std::any_of(pts.begin(), pts.end(), [&](Vec2 p) { return norm(p - q) <= tol; });
-}
-
-TEST(BoundaryCorners, SquareMinusDiskHasItsFourCorners) {
-  const auto c =
-      corners_of(csg(CsgOp::kDifference, {rectangle({-1, -1}, {1, 1}), circle({0, 0}, 0.5)}));
-  ASSERT_EQ(c.size(), 4u);
-  for (Vec2 q : {Vec2{-1, -1}, Vec2{1, -1}, Vec2{1, 1}, Vec2{-1, 1}}) EXPECT_TRUE(contains(c, q));
-}
-
-TEST(BoundaryCorners, RectangleInsideAUnionContributesNone) {
-  const auto c =
-      corners_of(csg(CsgOp::kUnion, {rectangle({-1, -1}, {1, 1}),
-                                     rectangle({-0.5, -0.5}, {0.5, 0.5}), circle({0, 0}, 0.2)}));
-  ASSERT_EQ(c.size(), 4u);
-  for (Vec2 q : {Vec2{-1, -1}, Vec2{1, -1}, Vec2{1, 1}, Vec2{-1, 1}}) EXPECT_TRUE(contains(c, q));
-  // Overlapping rectangles: only the corners outside the other one survive.
-  const auto l =
-      corners_of(csg(CsgOp::kUnion, {rectangle({0, 0}, {2, 1}), rectangle({1, -1}, {3, 0.5})}));
-  EXPECT_EQ(l.size(), 6u);
-  EXPECT_FALSE(contains(l, {2, 0}));    // inside the second
-  EXPECT_FALSE(contains(l, {1, 0.5}));  // inside the first
-  // A rectangular hole: its corners are on the boundary too.
-  const auto h = corners_of(
-      csg(CsgOp::kDifference, {rectangle({-2, -2}, {2, 2}), rectangle({-1, -1}, {1, 1})}));
-  EXPECT_EQ(h.size(), 8u);
-}
-
-TEST(BoundaryCorners, PolygonVerticesTransformed) {
-  const std::vector<Vec2> g3 = {{-0.4, -0.5}, {0.4, -0.2}, {0.4, -0.7}, {1.5, -0.4}, {0.9, 0.1},
-                                {1.6, 0.8},   {0.5, 0.5},  {0.2, 1},    {0.1, 0.4},  {-0.7, 0.7}};
-  const auto c = corners_of(Shape{Polygon{g3}, "", ""});
-  ASSERT_EQ(c.size(), g3.size());
-  for (Vec2 v : g3) EXPECT_TRUE(contains(c, v));
-  // Under a similarity, the corners are the transformed vertices.
-  const Similarity t{1.5, 0.4, {2, -1}};
-  const auto ct = corners_of(transformed(Shape{Polygon{g3}, "", ""}, t.scale, t.angle, t.offset));
-  ASSERT_EQ(ct.size(), g3.size());
-  for (Vec2 v : g3) EXPECT_TRUE(contains(ct, apply(t, v), 1e-12));
-  // A rotated rectangle's corners.
-  const auto cr = corners_of(transformed(rectangle({0, 0}, {2, 1}), 1, kPi / 5, {0, 0}));
-  EXPECT_EQ(cr.size(), 4u);
 }
 
 }  // namespace

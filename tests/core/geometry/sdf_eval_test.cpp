@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/geometry/compile.h"
+#include "tests/core/geometry/shape_builders.h"
 
 namespace meshd {
 namespace {
@@ -25,16 +26,8 @@ double sdf(const Shape& shape, Vec2 p) {
   return eval_sdf(program.view(), p);
 }
 
-Shape transformed(Shape inner, double scale, double angle, Vec2 offset) {
-  Transformed t;
-  t.transform = {scale, angle, offset};
-  t.operand.push_back(std::move(inner));
-  return Shape{std::move(t), "", ""};
-}
-
-Shape csg(CsgOp op, std::vector<Shape> operands) {
-  return Shape{Csg{op, std::move(operands)}, "", ""};
-}
+using testing::csg;
+using testing::transformed;
 
 // ---- Brute-force references -------------------------------------------------------------------
 
