@@ -78,7 +78,8 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   Vec2 total{0.0, 0.0};
   double l2 = 0.0, size_sum = 0.0;
   if (!gather) total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
-  const int32_t begin = gather ? a.csr_offset[i] : 0, end = gather ? a.csr_offset[i + 1] : 0;
+  const int32_t first = a.csr_offset[i], last = a.csr_offset[i + 1];
+  const int32_t begin = gather ? first : 0, end = gather ? last : 0;
   for (int32_t k = begin; k < end; k += kGatherBatch) {
     Vec2 other[kGatherBatch];
 #pragma unroll
@@ -111,8 +112,11 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
   a.on_boundary[i] = d >= -a.near_boundary;
   a.p_next[i] = q;
-  // Moves are measured in the node's own size (step_rule.cuh): h0 * the mean h of its bars.
-  const double unit = end > begin ? a.h0 * (size_sum / (end - begin)) : a.h0;
+  // Moves are measured in the node's own size (step_rule.cuh): h0 * the mean h of its bars. The
+  // atomic sums skipped the loop above, so there the sizes are read here.
+  if (!gather && !a.uniform)
+    for (int32_t k = first; k < last; ++k) size_sum += a.size[a.csr_entry[k] >> 1];
+  const double unit = a.uniform || last == first ? a.h0 : a.h0 * (size_sum / (last - first));
   const double move = norm(step) / unit;
   if (d < -a.geps) measures = {move, 0.0, move * move, 1.0, l2};
   measures.max_drift = norm(q - a.p_old[i]) / unit;
