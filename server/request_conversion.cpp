@@ -350,7 +350,10 @@ Params params(const v1::MeshRequest& request) {
   const auto& in = request.params();
   if (in.has_dptol()) out.dptol = in_range(in.dptol(), 0, true, 0.1, "params.dptol");
   if (in.has_ttol()) out.ttol = in_range(in.ttol(), 0, true, 1, "params.ttol");
-  if (in.has_fscale()) out.fscale = in_range(in.fscale(), 1, false, 2, "params.fscale");
+  if (in.has_fscale()) {
+    out.fscale = in_range(in.fscale(), 1, false, 2, "params.fscale");
+    out.fscale_auto = false;
+  }
   if (in.has_deltat()) out.deltat = in_range(in.deltat(), 0, true, 0.5, "params.deltat");
   if (in.has_geps()) out.geps = in_range(in.geps(), 0, true, 0.1, "params.geps");
   if (in.has_density_control_interval()) {

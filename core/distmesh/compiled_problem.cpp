@@ -58,6 +58,7 @@ CompiledProblem compile_problem(const Problem& problem) {
     t.h_max /= floor;
   }
   out.params = problem.params;
+  if (out.params.fscale_auto) out.params.fscale = out.size.uniform() ? 1.2 : 1.1;  // params.h
   out.seed = problem.seed;
 
   const Box derived = program_bounds(out.geometry);
