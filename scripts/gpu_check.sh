@@ -41,11 +41,23 @@ for step in "${steps[@]}"; do
         $run meshbench --backend gpu --repeat 3 --phases --nodes $n $req 2>&1 | tee -a "$out/profile.log"
       done ;;
     bench)
-      # G1 and G2 uniform at the issue's sizes, GPU and CPU (all cores) on the same host.
+      # G1 and G2 uniform at the issue's sizes, GPU and CPU (all cores) on the same host; beside
+      # them what users send: G5 (graded) and the realistic examples.
       req="examples/g1_disk.textproto examples/g2_square_hole.textproto"
+      users="examples/g5_graded_hole.textproto examples/plate_with_holes.textproto
+             examples/airfoil_channel.textproto examples/l_shape_refined.textproto
+             examples/gear.textproto"
       for n in 20000 100000 1000000 4000000; do
         repeat=3; [ $n -gt 1000000 ] && repeat=1
         $run meshbench --backend gpu --repeat $repeat --nodes $n $req 2>&1 | tee -a "$out/bench_gpu.log"
+      done
+      for n in 10000 100000 1000000; do
+        repeat=3; [ $n -ge 1000000 ] && repeat=1
+        $run meshbench --backend gpu --repeat $repeat --phases --nodes $n $users 2>&1 |
+          tee -a "$out/bench_gpu_users.log"
+      done
+      for n in 10000 100000; do
+        $run meshbench --backend cpu --nodes $n $users 2>&1 | tee -a "$out/bench_cpu_users.log"
       done
       # The step's kernels launched one by one, one step per host round trip, against the graph.
       for n in 20000 1000000; do
