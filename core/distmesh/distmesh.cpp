@@ -123,11 +123,7 @@ class Loop {
   static constexpr int kCleanupRounds = 3;
   static constexpr int kCleanupIterations = 200;
   // The termination test's constants (step_rule.cuh).
-  // 30 dptol: a node next to a gliding defect of a graded mesh (a run of single flips) moves a
-  // few hundredths of an edge per step for hundreds of steps while the rest has settled; waiting
-  // for it tripled G5's iterations for q_mean +0.001. G2 at 100k: 44 iterations instead of 119,
-  // q_mean 0.9985 instead of 0.9986.
-  static constexpr double kMaxMoveFactor = 30.0;
+  static constexpr double kMaxMoveFactor = 10.0;
   static constexpr int kMinIterations = 10;
 
   void triangulate(bool full) {
