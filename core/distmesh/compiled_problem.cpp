@@ -35,8 +35,18 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
     for (size_t i = 0; i + 1 < prim.corners.size(); i += 2)
       add_if_on_boundary({prim.corners[i], prim.corners[i + 1]});
   }
-  // Where two primitives' boundaries cross on the final boundary, it turns: a corner too.
-  for (Vec2 v : boundary_crossings(geometry, bbox)) add_if_on_boundary(v);
+  // Where two primitives' boundaries cross on the final boundary, it turns: a corner too. Two
+  // zigzag polygons can cross each other a million times; past kMaxCrossingCorners the request
+  // is refused rather than pinned node by node (the duplicate test above is quadratic).
+  for (Vec2 v : boundary_crossings(geometry, bbox)) {
+    add_if_on_boundary(v);
+    if (corners.size() > kMaxCrossingCorners) {
+      throw_invalid("geometry", "its primitives' boundaries cross at more than " +
+                                    std::to_string(kMaxCrossingCorners) +
+                                    " corners of the domain (at most " +
+                                    std::to_string(kMaxCrossingCorners) + ")");
+    }
+  }
   return corners;
 }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/common/error.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
@@ -201,6 +202,25 @@ TEST(BoundaryCrossings, CrossingsOffTheFinalBoundaryAreFoundButNotCorners) {
   EXPECT_EQ(c.size(), 4u);
   EXPECT_FALSE(contains(c, {0.5, std::sqrt(0.75)}, 1e-12));
   EXPECT_TRUE(contains(c, {0.25, std::sqrt(1 - 0.25 * 0.25)}, 1e-15));
+}
+
+TEST(BoundaryCorners, TooManyCrossingsAreRefusedNamingTheGeometry) {
+  // A grid of 80 thin horizontal and 80 thin vertical bars: each pair's union has 4 concave
+  // corners, 25,600 in all, past kMaxCrossingCorners.
+  std::vector<Shape> bars;
+  for (int k = 0; k < 80; ++k) {
+    bars.push_back(rectangle({0, k + 0.4}, {80, k + 0.6}));
+    bars.push_back(rectangle({k + 0.4, 0}, {k + 0.6, 80}));
+  }
+  const Program p = compile_geometry(csg(CsgOp::kUnion, bars));
+  try {
+    boundary_corners(p, program_bounds(p));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_EQ(e.field(), "geometry");
+    EXPECT_NE(std::string(e.what()).find("at most 20000"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
