@@ -7,7 +7,8 @@
 #   bench/compare_gmsh.sh [TARGET_NODES...]          (default: 10000 100000)
 #   CASES="g5_graded_hole" bench/compare_gmsh.sh 100000
 #
-# Run from the repository root after building. For each case and target:
+# Run from the repository root after building. For each case and target, one function (compare)
+# does steps 1-4 for any .geo that reads hs:
 #   1. meshes the .geo once at a probe size and rescales hs by sqrt(nodes / target), up to four
 #      times, until gmsh's node count is within 1% of the target;
 #   2. times `gmsh -2 -format msh22` (wall time of the whole process, best of 3). No -nt is
@@ -29,6 +30,7 @@
 # CASES (default "g2_square_hole g5_graded_hole plate_with_holes"), WORK (directory for the .msh
 # files; default a temporary directory, removed at exit).
 set -euo pipefail
+shopt -s inherit_errexit  # so that a failure inside $(compare ...) stops the script
 
 GMSH=${GMSH:-gmsh}
 MESHBENCH=${MESHBENCH:-build/bin/meshbench}
@@ -87,6 +89,48 @@ print(f"{q.min():.3f} {q.mean():.4f}")
 EOF
 }
 
+# ---- one request at one size -------------------------------------------------------------------
+
+# compare GEO REQUEST TARGET MSH: steps 1-4 above for the Gmsh twin GEO (a .geo that reads the
+# size scale hs) and the meshd request REQUEST, aiming at TARGET nodes; MSH is gmsh's output file.
+# Prints "gmsh_nodes gmsh_s gmsh_2d_s gmsh_qmin gmsh_qmean meshd_nodes meshd_s meshd_qmin
+# meshd_qmean"; logs the attempts and runs to stderr.
+compare() {
+  local geo=$1 request=$2 target=$3 msh=$4
+  local hs=$PROBE_HS nodes off attempt
+  for attempt in 0 1 2 3 4; do
+    nodes=
+    read -r _ _ nodes < <(run_gmsh "$geo" "$hs" "$msh") || true
+    [[ -n $nodes ]] || { echo "compare_gmsh: gmsh failed on $geo (hs = $hs)" >&2; return 1; }
+    off=$(echo "($nodes - $target) / $target" | bc -l)
+    printf '  %s, target %s: hs = %.6f gives %s nodes (%+.2f%%)\n' "$geo" "$target" "$hs" \
+      "$nodes" "$(echo "100 * $off" | bc -l)" >&2
+    if [[ $(echo "$off < 0.01 && $off > -0.01" | bc -l) == 1 ]]; then break; fi
+    [[ $attempt == 4 ]] || hs=$(echo "$hs * sqrt($nodes / $target)" | bc -l)
+  done
+
+  local best='' best2d='' rep wall mesh2d
+  for rep in 1 2 3; do
+    wall=
+    read -r wall mesh2d nodes < <(run_gmsh "$geo" "$hs" "$msh") || true
+    [[ -n $wall ]] || { echo "compare_gmsh: gmsh failed on $geo (hs = $hs)" >&2; return 1; }
+    echo "  gmsh run $rep: ${wall} s wall, ${mesh2d} s 2D meshing" >&2
+    if [[ -z $best || $(echo "$wall < $best" | bc -l) == 1 ]]; then best=$wall best2d=$mesh2d; fi
+  done
+  local gq_min gq_mean
+  read -r gq_min gq_mean < <(gmsh_quality "$msh")
+
+  local bench m_nodes m_time m_qmin m_qmean
+  bench=$("$MESHBENCH" "${threads_arg[@]}" --nodes "$nodes" --repeat 3 "$request")
+  echo "$bench" | tail -1 >&2
+  # Columns by their header names, so that new meshbench columns do not shift them.
+  read -r m_nodes m_time m_qmin m_qmean < <(echo "$bench" | grep '^|' | awk -F'|' '
+    NR == 1 { for (i = 2; i < NF; i++) { name = $i; gsub(/^ +| +$/, "", name); col[name] = i } }
+    END { v = $0; split(v, f, "|"); for (k in f) gsub(/^ +| +$/, "", f[k]);
+          print f[col["nodes"]], f[col["t_total s"]], f[col["q_min"]], f[col["q_mean"]] }')
+  echo "$nodes $best ${best2d:-nan} $gq_min $gq_mean $m_nodes $m_time $m_qmin $m_qmean"
+}
+
 # ---- main -------------------------------------------------------------------------------------
 
 threads_arg=()
@@ -98,35 +142,9 @@ echo "$header" >&2
 
 rows=()
 for case in "${cases[@]}"; do
-  geo=bench/gmsh/$case.geo request=examples/$case.textproto
   for target in "${targets[@]}"; do
-    msh=$WORK/${case}_$target.msh
-    hs=$PROBE_HS
-    for attempt in 0 1 2 3 4; do
-      read -r _ _ nodes < <(run_gmsh "$geo" "$hs" "$msh")
-      [[ -n $nodes ]] || { echo "compare_gmsh: gmsh failed on $geo" >&2; exit 1; }
-      off=$(echo "($nodes - $target) / $target" | bc -l)
-      printf '  %s, target %s: hs = %.6f gives %s nodes (%+.2f%%)\n' "$case" "$target" "$hs" \
-        "$nodes" "$(echo "100 * $off" | bc -l)" >&2
-      if [[ $(echo "$off < 0.01 && $off > -0.01" | bc -l) == 1 ]]; then break; fi
-      [[ $attempt == 4 ]] || hs=$(echo "$hs * sqrt($nodes / $target)" | bc -l)
-    done
-
-    best= best2d=
-    for rep in 1 2 3; do
-      read -r wall mesh2d nodes < <(run_gmsh "$geo" "$hs" "$msh")
-      echo "  gmsh run $rep: ${wall} s wall, ${mesh2d} s 2D meshing" >&2
-      if [[ -z $best || $(echo "$wall < $best" | bc -l) == 1 ]]; then best=$wall best2d=$mesh2d; fi
-    done
-    read -r gq_min gq_mean < <(gmsh_quality "$msh")
-
-    bench=$("$MESHBENCH" "${threads_arg[@]}" --nodes "$nodes" --repeat 3 "$request")
-    echo "$bench" | tail -1 >&2
-    # Columns by their header names, so that new meshbench columns do not shift them.
-    read -r m_nodes m_time m_qmin m_qmean < <(echo "$bench" | grep '^|' | awk -F'|' '
-      NR == 1 { for (i = 2; i < NF; i++) { name = $i; gsub(/^ +| +$/, "", name); col[name] = i } }
-      END { v = $0; split(v, f, "|"); for (k in f) gsub(/^ +| +$/, "", f[k]);
-            print f[col["nodes"]], f[col["t_total s"]], f[col["q_min"]], f[col["q_mean"]] }')
+    result=$(compare "bench/gmsh/$case.geo" "examples/$case.textproto" "$target" "$WORK/${case}_$target.msh")
+    read -r nodes best best2d gq_min gq_mean m_nodes m_time m_qmin m_qmean <<<"$result"
     ratio=$(echo "$best / $m_time" | bc -l)
     pydm="—"
     [[ $case == g2_square_hole && $target == 10000 ]] && pydm="$PYDISTMESH_10K_S (quoted)"
