@@ -113,7 +113,7 @@ std::shared_ptr<Job> JobManager::find(const std::string& id) const {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) {
     throw Error(ErrorCode::kNotFound, "job_id",
-                "no job '" + id + "' on this server (finished jobs are kept for " +
+                "no job " + quote_input(id) + " on this server (finished jobs are kept for " +
                     std::to_string(options_.retention.count() / 1000) + " s)");
   }
   return it->second;

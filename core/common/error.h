@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace meshd {
 
@@ -39,5 +40,10 @@ class Error : public std::runtime_error {
 
 // Shorthand for the most common case: an invalid request field.
 [[noreturn]] void throw_invalid(const std::string& field, const std::string& message);
+
+// `text` from a request, quoted for an error message: at most 64 characters shown, bytes that
+// are not printable ASCII as \xNN, and a longer text cut with its length said, so that an echoed
+// input never outgrows the status message that carries it.
+std::string quote_input(std::string_view text);
 
 }  // namespace meshd
