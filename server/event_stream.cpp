@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "server/wire_message.h"
 
 namespace meshd {
 
@@ -31,8 +32,14 @@ void EventStream::pump() {
     case NextEvent::kNone:
       return;
     case NextEvent::kEvent:
+      try {
+        event_bytes_ = serialize_message(event_);
+      } catch (const Error& e) {
+        finish(grpc::Status(grpc::StatusCode::INTERNAL, e.what()));
+        return;
+      }
       writing_ = true;
-      StartWrite(&event_);
+      StartWrite(&event_bytes_);
       return;
     case NextEvent::kFinished:
       finish(status);

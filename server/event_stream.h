@@ -17,7 +17,7 @@
 
 namespace meshd {
 
-class EventStream final : public grpc::ServerWriteReactor<v1::MeshEvent> {
+class EventStream final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
  public:
   EventStream(grpc::CallbackServerContext* context, JobManager& manager, std::shared_ptr<Job> job,
               bool owns_job, Metrics& metrics);
@@ -47,12 +47,13 @@ class EventStream final : public grpc::ServerWriteReactor<v1::MeshEvent> {
   const std::shared_ptr<Link> link_ = std::make_shared<Link>();
   EventCursor cursor_;
   v1::MeshEvent event_;
+  grpc::ByteBuffer event_bytes_;  // event_ serialized: the service's methods are raw
   bool writing_ = false;
   bool finished_ = false;
 };
 
 // A stream that ends at once with `status` (a refused request).
-class RefusedStream final : public grpc::ServerWriteReactor<v1::MeshEvent> {
+class RefusedStream final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
  public:
   explicit RefusedStream(const grpc::Status& status) { Finish(status); }
   void OnDone() override { delete this; }

@@ -7,6 +7,7 @@
 #include "core/common/error.h"
 #include "server/event_stream.h"
 #include "server/status_mapping.h"
+#include "server/wire_message.h"
 
 namespace meshd {
 
@@ -27,14 +28,16 @@ grpc::ServerUnaryReactor* finish_unary(grpc::CallbackServerContext* context,
   return reactor;
 }
 
-// Runs `body` and finishes the call with OK, or with the status its error maps to.
-template <typename Body>
+// Parses the request, runs `body` on it and finishes the call with OK and the reply it returns,
+// or with the status its error maps to.
+template <typename Request, typename Body>
 grpc::ServerUnaryReactor* unary(grpc::CallbackServerContext* context, const BearerToken& token,
+                                const grpc::ByteBuffer* request, grpc::ByteBuffer* reply,
                                 Body&& body) {
   if (grpc::Status status = token.check(*context); !status.ok())
     return finish_unary(context, status);
   try {
-    body();
+    *reply = serialize_message(body(parse_message<Request>(*request)));
     return finish_unary(context, grpc::Status::OK);
   } catch (...) {
     return finish_unary(context, to_grpc_status(std::current_exception()));
@@ -43,11 +46,13 @@ grpc::ServerUnaryReactor* unary(grpc::CallbackServerContext* context, const Bear
 
 }  // namespace
 
-grpc::ServerWriteReactor<v1::MeshEvent>* MeshService::Generate(grpc::CallbackServerContext* context,
-                                                               const v1::MeshRequest* request) {
+// A request that cannot be parsed counts as rejected, as one that fails validation does.
+grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Generate(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
   if (grpc::Status status = token_.check(*context); !status.ok()) return new RefusedStream(status);
   try {
-    std::shared_ptr<Job> job = manager_.submit(*request, job_deadline(*context));
+    const auto mesh_request = parse_message<v1::MeshRequest>(*request);
+    std::shared_ptr<Job> job = manager_.submit(mesh_request, job_deadline(*context));
     return new EventStream(context, manager_, std::move(job), /*owns_job=*/true, metrics_);
   } catch (...) {
     metrics_.count_job("rejected");
@@ -58,47 +63,61 @@ grpc::ServerWriteReactor<v1::MeshEvent>* MeshService::Generate(grpc::CallbackSer
 }
 
 grpc::ServerUnaryReactor* MeshService::Submit(grpc::CallbackServerContext* context,
-                                              const v1::MeshRequest* request, v1::JobRef* reply) {
-  return unary(context, token_, [&] {
-    try {
-      reply->set_job_id(manager_.submit(*request, Job::Clock::time_point::max())->id());
-    } catch (...) {
-      metrics_.count_job("rejected");
-      throw;
-    }
-  });
+                                              const grpc::ByteBuffer* request,
+                                              grpc::ByteBuffer* reply) {
+  if (grpc::Status status = token_.check(*context); !status.ok())
+    return finish_unary(context, status);
+  try {
+    const auto mesh_request = parse_message<v1::MeshRequest>(*request);
+    v1::JobRef ref;
+    ref.set_job_id(manager_.submit(mesh_request, Job::Clock::time_point::max())->id());
+    *reply = serialize_message(ref);
+    return finish_unary(context, grpc::Status::OK);
+  } catch (...) {
+    metrics_.count_job("rejected");
+    return finish_unary(context, to_grpc_status(std::current_exception()));
+  }
 }
 
-grpc::ServerWriteReactor<v1::MeshEvent>* MeshService::Watch(grpc::CallbackServerContext* context,
-                                                            const v1::JobRef* request) {
+grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Watch(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
   if (grpc::Status status = token_.check(*context); !status.ok()) return new RefusedStream(status);
   try {
-    return new EventStream(context, manager_, manager_.find(request->job_id()),
-                           /*owns_job=*/false, metrics_);
+    const auto ref = parse_message<v1::JobRef>(*request);
+    return new EventStream(context, manager_, manager_.find(ref.job_id()), /*owns_job=*/false,
+                           metrics_);
   } catch (...) {
     return new RefusedStream(to_grpc_status(std::current_exception()));
   }
 }
 
 grpc::ServerUnaryReactor* MeshService::Cancel(grpc::CallbackServerContext* context,
-                                              const v1::JobRef* request, v1::JobInfo* reply) {
-  return unary(context, token_, [&] {
-    *reply = manager_.cancel(request->job_id(),
-                             grpc::Status(grpc::StatusCode::CANCELLED, "cancelled by Cancel"));
+                                              const grpc::ByteBuffer* request,
+                                              grpc::ByteBuffer* reply) {
+  return unary<v1::JobRef>(context, token_, request, reply, [&](const v1::JobRef& ref) {
+    return manager_.cancel(ref.job_id(),
+                           grpc::Status(grpc::StatusCode::CANCELLED, "cancelled by Cancel"));
   });
 }
 
 grpc::ServerUnaryReactor* MeshService::GetJob(grpc::CallbackServerContext* context,
-                                              const v1::JobRef* request, v1::JobInfo* reply) {
-  return unary(context, token_, [&] { *reply = manager_.find(request->job_id())->info(); });
+                                              const grpc::ByteBuffer* request,
+                                              grpc::ByteBuffer* reply) {
+  return unary<v1::JobRef>(context, token_, request, reply, [&](const v1::JobRef& ref) {
+    return manager_.find(ref.job_id())->info();
+  });
 }
 
 grpc::ServerUnaryReactor* MeshService::ListJobs(grpc::CallbackServerContext* context,
-                                                const v1::ListJobsRequest* request,
-                                                v1::ListJobsResponse* reply) {
-  return unary(context, token_, [&] {
-    for (v1::JobInfo& info : manager_.list(request->state())) *reply->add_jobs() = std::move(info);
-  });
+                                                const grpc::ByteBuffer* request,
+                                                grpc::ByteBuffer* reply) {
+  return unary<v1::ListJobsRequest>(context, token_, request, reply,
+                                    [&](const v1::ListJobsRequest& list) {
+                                      v1::ListJobsResponse jobs;
+                                      for (v1::JobInfo& info : manager_.list(list.state()))
+                                        *jobs.add_jobs() = std::move(info);
+                                      return jobs;
+                                    });
 }
 
 }  // namespace meshd

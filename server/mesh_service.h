@@ -1,5 +1,7 @@
-// meshd.v1.MeshService on gRPC's callback API: thin handlers that check the token, convert, call
-// the JobManager and stream. They never mesh.
+// meshd.v1.MeshService on gRPC's callback API: thin handlers that check the token, parse,
+// convert, call the JobManager and stream. They never mesh. Every method is registered raw (bytes
+// in, bytes out) so that the service parses requests itself: one that protobuf cannot parse gets
+// INVALID_ARGUMENT saying why (server/wire_message.h).
 #pragma once
 
 #include "meshd/v1/service.grpc.pb.h"
@@ -9,24 +11,34 @@
 
 namespace meshd {
 
-class MeshService final : public v1::MeshService::CallbackService {
+using RawMeshService = v1::MeshService::WithRawCallbackMethod_Generate<
+    v1::MeshService::WithRawCallbackMethod_Submit<v1::MeshService::WithRawCallbackMethod_Watch<
+        v1::MeshService::WithRawCallbackMethod_Cancel<v1::MeshService::WithRawCallbackMethod_GetJob<
+            v1::MeshService::WithRawCallbackMethod_ListJobs<v1::MeshService::Service>>>>>>;
+
+// Each method's bytes are the message its proto names: MeshRequest in, MeshEvent stream out for
+// Generate, and so on.
+class MeshService final : public RawMeshService {
  public:
   MeshService(JobManager& manager, Metrics& metrics, BearerToken token)
       : manager_(manager), metrics_(metrics), token_(std::move(token)) {}
 
-  grpc::ServerWriteReactor<v1::MeshEvent>* Generate(grpc::CallbackServerContext* context,
-                                                    const v1::MeshRequest* request) override;
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* Generate(grpc::CallbackServerContext* context,
+                                                      const grpc::ByteBuffer* request) override;
   grpc::ServerUnaryReactor* Submit(grpc::CallbackServerContext* context,
-                                   const v1::MeshRequest* request, v1::JobRef* reply) override;
-  grpc::ServerWriteReactor<v1::MeshEvent>* Watch(grpc::CallbackServerContext* context,
-                                                 const v1::JobRef* request) override;
-  grpc::ServerUnaryReactor* Cancel(grpc::CallbackServerContext* context, const v1::JobRef* request,
-                                   v1::JobInfo* reply) override;
-  grpc::ServerUnaryReactor* GetJob(grpc::CallbackServerContext* context, const v1::JobRef* request,
-                                   v1::JobInfo* reply) override;
+                                   const grpc::ByteBuffer* request,
+                                   grpc::ByteBuffer* reply) override;
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* Watch(grpc::CallbackServerContext* context,
+                                                   const grpc::ByteBuffer* request) override;
+  grpc::ServerUnaryReactor* Cancel(grpc::CallbackServerContext* context,
+                                   const grpc::ByteBuffer* request,
+                                   grpc::ByteBuffer* reply) override;
+  grpc::ServerUnaryReactor* GetJob(grpc::CallbackServerContext* context,
+                                   const grpc::ByteBuffer* request,
+                                   grpc::ByteBuffer* reply) override;
   grpc::ServerUnaryReactor* ListJobs(grpc::CallbackServerContext* context,
-                                     const v1::ListJobsRequest* request,
-                                     v1::ListJobsResponse* reply) override;
+                                     const grpc::ByteBuffer* request,
+                                     grpc::ByteBuffer* reply) override;
 
  private:
   JobManager& manager_;

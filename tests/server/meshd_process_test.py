@@ -211,6 +211,64 @@ def test_bad_requests(meshd, state):
     state["succeeded"] += 1
 
 
+def raw_call(meshd, method, payload):
+    """Calls `method` with `payload` as its request's bytes: (status code, details)."""
+    path = f"/meshd.v1.MeshService/{method}"
+    streams = method in ("Generate", "Watch")
+    call = (meshd.channel.unary_stream if streams else meshd.channel.unary_unary)(
+        path, request_serializer=lambda x: x, response_deserializer=lambda x: x)
+    try:
+        reply = call(payload, timeout=RPC_TIMEOUT)
+        if streams:
+            list(reply)
+        return grpc.StatusCode.OK, ""
+    except grpc.RpcError as e:
+        return e.code(), e.details()
+
+
+def nested_request(levels):
+    """A disk under `levels` translations, each two protobuf messages deep."""
+    request = disk(0.2)
+    for _ in range(levels):
+        outer = request_pb2.MeshRequest()
+        outer.CopyFrom(request)
+        outer.geometry.ClearField("circle")
+        outer.geometry.translate.shape.CopyFrom(request.geometry)
+        request = outer
+    return request.SerializeToString()
+
+
+def test_unparseable_requests(meshd, state):
+    """Bytes protobuf cannot parse get INVALID_ARGUMENT saying why, on every method (gRPC's own
+    handlers answer UNIMPLEMENTED with no message)."""
+    garbage = b"\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\x01\x0a\x05ab"
+    for method, message in (("Generate", "MeshRequest"), ("Submit", "MeshRequest"),
+                            ("Watch", "JobRef"), ("Cancel", "JobRef"), ("GetJob", "JobRef"),
+                            ("ListJobs", "ListJobsRequest")):
+        code, details = raw_call(meshd, method, garbage)
+        assert code == grpc.StatusCode.INVALID_ARGUMENT, f"{method}: {code} {details!r}"
+        assert f"could not be parsed as meshd.v1.{message}" in details, f"{method}: {details!r}"
+        assert "wire format" in details, f"{method}: the reason is missing: {details!r}"
+        print(f"  {method}: {details}")
+    state["rejected"] += 2
+    # Nested past protobuf's recursion limit (100): said so. Below it, our own limit speaks.
+    code, details = raw_call(meshd, "Submit", nested_request(60))
+    assert code == grpc.StatusCode.INVALID_ARGUMENT, f"deep tree: {code} {details!r}"
+    assert "more than 100 levels deep" in details, f"deep tree: {details!r}"
+    print(f"  60 nested transforms: {details}")
+    code, details = raw_call(meshd, "Submit", nested_request(40))
+    assert code == grpc.StatusCode.INVALID_ARGUMENT and "geometry" in details, details
+    state["rejected"] += 2
+    # An echoed input stays short: a 100,000-character job id is not sent back whole.
+    ref = service_pb2.JobRef(job_id="x" * 100_000)
+    for method in ("GetJob", "Cancel", "Watch"):
+        code, details = raw_call(meshd, method, ref.SerializeToString())
+        assert code == grpc.StatusCode.NOT_FOUND, f"{method}: {code} {details[:200]!r}"
+        assert len(details) < 300, f"{method}: a {len(details)}-character message"
+    print(f"  a 100,000-character job id: {details}")
+    assert meshd.health() == SERVING, "health after unparseable requests"
+
+
 def test_metrics(meshd, state):
     def succeeded():
         return meshd.metric("meshd_jobs_total", 'outcome="succeeded"')
@@ -335,6 +393,7 @@ def main():
             run("generate_disk", test_generate, meshd, state)
             run("submit_watch_getjob_listjobs", test_submit_watch, meshd, state)
             run("bad_requests_name_the_field", test_bad_requests, meshd, state)
+            run("unparseable_requests_say_why", test_unparseable_requests, meshd, state)
             run("metrics_count_jobs", test_metrics, meshd, state)
             run("reflection_lists_services", test_reflection, meshd, state)
             if failed:
