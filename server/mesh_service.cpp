@@ -79,8 +79,8 @@ grpc::ServerUnaryReactor* MeshService::Submit(grpc::CallbackServerContext* conte
   }
 }
 
-grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Watch(
-    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
+grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Watch(grpc::CallbackServerContext* context,
+                                                               const grpc::ByteBuffer* request) {
   if (grpc::Status status = token_.check(*context); !status.ok()) return new RefusedStream(status);
   try {
     const auto ref = parse_message<v1::JobRef>(*request);

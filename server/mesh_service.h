@@ -24,12 +24,12 @@ class MeshService final : public RawMeshService {
       : manager_(manager), metrics_(metrics), token_(std::move(token)) {}
 
   grpc::ServerWriteReactor<grpc::ByteBuffer>* Generate(grpc::CallbackServerContext* context,
-                                                      const grpc::ByteBuffer* request) override;
+                                                       const grpc::ByteBuffer* request) override;
   grpc::ServerUnaryReactor* Submit(grpc::CallbackServerContext* context,
                                    const grpc::ByteBuffer* request,
                                    grpc::ByteBuffer* reply) override;
   grpc::ServerWriteReactor<grpc::ByteBuffer>* Watch(grpc::CallbackServerContext* context,
-                                                   const grpc::ByteBuffer* request) override;
+                                                    const grpc::ByteBuffer* request) override;
   grpc::ServerUnaryReactor* Cancel(grpc::CallbackServerContext* context,
                                    const grpc::ByteBuffer* request,
                                    grpc::ByteBuffer* reply) override;

@@ -54,8 +54,8 @@ grpc::ByteBuffer serialize_message(const google::protobuf::Message& message) {
       grpc::GenericSerialize<grpc::ProtoBufferWriter, google::protobuf::Message>(message, &bytes,
                                                                                  &own_buffer);
   if (!status.ok()) {
-    throw Error(ErrorCode::kInternal, "", "cannot serialize " + message.GetTypeName() + ": " +
-                                              status.error_message());
+    throw Error(ErrorCode::kInternal, "",
+                "cannot serialize " + message.GetTypeName() + ": " + status.error_message());
   }
   return bytes;
 }
