@@ -50,10 +50,10 @@ v1::JobState to_proto(JobState s) {
 
 }  // namespace
 
-Job::Job(std::string id, JobSpec spec, Backend worker, Clock::time_point deadline)
+Job::Job(std::string id, JobSpec spec, Backend backend, Clock::time_point deadline)
     : id_(std::move(id)),
       spec_(std::move(spec)),
-      worker_(worker),
+      backend_(backend),
       deadline_(deadline),
       submitted_(Clock::now()),
       submitted_unix_s_(unix_now_s()) {}

@@ -58,13 +58,13 @@ class Job {
  public:
   using Clock = std::chrono::steady_clock;
 
-  // `worker` is the kind of worker that runs it (kGpu or kCpu, never kAuto); `deadline` is
-  // Clock::time_point::max() when none.
-  Job(std::string id, JobSpec spec, Backend worker, Clock::time_point deadline);
+  // `backend` is the kind of worker that may run it: kGpu, kCpu, or kAuto for either (the queue
+  // decides which); `deadline` is Clock::time_point::max() when none.
+  Job(std::string id, JobSpec spec, Backend backend, Clock::time_point deadline);
 
   const std::string& id() const { return id_; }
   const JobSpec& spec() const { return spec_; }
-  Backend worker() const { return worker_; }
+  Backend backend() const { return backend_; }
   Clock::time_point deadline() const { return deadline_; }
   Clock::time_point submitted() const { return submitted_; }
 
@@ -106,7 +106,7 @@ class Job {
 
   const std::string id_;
   const JobSpec spec_;
-  const Backend worker_;
+  const Backend backend_;
   const Clock::time_point deadline_;
   const Clock::time_point submitted_;
   const double submitted_unix_s_;

@@ -32,6 +32,7 @@ JobManager::JobManager(JobManagerOptions options, std::vector<WorkerSpec> worker
     : options_(std::move(options)), metrics_(metrics), queue_(options_.queue_capacity) {
   id_salt_ = std::random_device{}() & 0xffffffu;
   for (WorkerSpec& w : workers) {
+    if (w.kind == Backend::kCpu) ++cpu_workers_;
     Worker::Hooks hooks{[this](Job& job) { on_finished(job); },
                         [this](Worker& worker) { on_retired(worker); }};
     workers_.push_back(std::make_unique<Worker>(std::move(w.name), w.kind, std::move(w.factory),
@@ -46,6 +47,7 @@ void JobManager::start() {
     w->warm_up();
     if (w->kind() == Backend::kGpu) ++live_gpu_workers_;
   }
+  queue_.set_worker_count(Backend::kGpu, live_gpu_workers_.load());
   for (auto& w : workers_) w->start();
   housekeeping_ = std::thread([this] { housekeeping(); });
 }
@@ -81,7 +83,8 @@ std::shared_ptr<Job> JobManager::submit(const v1::MeshRequest& request,
                 "BACKEND_GPU asked, but this server has no working GPU: use BACKEND_AUTO or "
                 "BACKEND_CPU");
   }
-  if (worker == Backend::kAuto) worker = has_gpu() ? Backend::kGpu : Backend::kCpu;
+  if (worker == Backend::kAuto && (!has_gpu() || cpu_workers_ == 0))
+    worker = has_gpu() ? Backend::kGpu : Backend::kCpu;
 
   std::shared_ptr<Job> job;
   {
@@ -164,8 +167,11 @@ void JobManager::on_finished(Job& job) {
 }
 
 void JobManager::on_retired(Worker& worker) {
-  if (worker.kind() != Backend::kGpu || --live_gpu_workers_ > 0) return;
-  spdlog::error("no GPU worker left: new jobs run on the CPU, queued GPU jobs fail");
+  if (worker.kind() != Backend::kGpu) return;
+  const int left = --live_gpu_workers_;
+  queue_.set_worker_count(Backend::kGpu, left);
+  if (left > 0) return;
+  spdlog::error("no GPU worker left: new and shared jobs run on the CPU, queued GPU jobs fail");
   for (const auto& job : queue_.take_all(Backend::kGpu)) {
     finish_queued(job, grpc::Status(grpc::StatusCode::UNAVAILABLE,
                                     "the server's last GPU failed before this job started"));

@@ -3,8 +3,9 @@
 // owns the queue and the workers; the gRPC handlers only call it.
 //
 // Routing: a job asking for the GPU goes to the GPU line (FAILED_PRECONDITION when the server
-// has no GPU worker), one asking for the CPU to the CPU line, and BACKEND_AUTO to the GPU line
-// when a GPU worker is alive, else to the CPU line.
+// has no GPU worker), one asking for the CPU to the CPU line, and BACKEND_AUTO to the shared
+// line when the server has workers of both kinds (the queue then sends it where it will finish
+// first), else to the line of the kind it has.
 #pragma once
 
 #include <atomic>
@@ -84,6 +85,7 @@ class JobManager {
   JobQueue queue_;
   std::vector<std::unique_ptr<Worker>> workers_;
   std::atomic<int> live_gpu_workers_{0};
+  int cpu_workers_ = 0;
   std::atomic<int64_t> live_{0};
   std::atomic<bool> accepting_{true};
 

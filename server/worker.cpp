@@ -8,6 +8,7 @@
 #include "core/common/error.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/distmesh.h"
+#include "core/distmesh/node_estimate.h"
 #include "server/job_observer.h"
 #include "server/request_conversion.h"
 #include "server/status_mapping.h"
@@ -49,8 +50,10 @@ void Worker::warm_up() {
   const auto t = Job::Clock::now();
   engine_ = factory_();
   device_ = engine_->device();
-  const MeshResult r =
-      generate_mesh(compile_problem(warm_up_problem()), engine_->engine(), nullptr, nullptr);
+  const CompiledProblem problem = compile_problem(warm_up_problem());
+  const auto t_mesh = Job::Clock::now();
+  const MeshResult r = generate_mesh(problem, engine_->engine(), nullptr, nullptr);
+  queue_.observe_run(kind_, estimate_node_count(problem), seconds_since(t_mesh));
   spdlog::info("worker {} warm on {}: {} nodes in {:.3f} s", name_, device_, r.mesh.points.size(),
                seconds_since(t));
 }
@@ -66,7 +69,9 @@ void Worker::join() {
 void Worker::loop() {
   while (std::shared_ptr<Job> job = queue_.pop(kind_)) {
     metrics_.set_queue_depth(static_cast<int64_t>(queue_.size()));
+    const auto t = Job::Clock::now();
     run(*job);
+    queue_.done(*job, kind_, seconds_since(t), job->state() == JobState::kSucceeded);
     if (hooks_.finished) hooks_.finished(*job);
     if (!engine_ && !rebuild_engine()) {
       retired_ = true;
