@@ -19,8 +19,11 @@ const char* server_usage() {
   --listen HOST:PORT        gRPC address (default 127.0.0.1:50051; port 0 picks a free port
                             and logs it)
   --metrics HOST:PORT       serve Prometheus metrics at http://HOST:PORT/metrics (default: off)
-  --backend auto|gpu|cpu    auto: one GPU worker per visible device, the CPU when none;
+  --backend auto|gpu|cpu    auto: GPU workers on every visible device and the CPU workers
+                            beside them (BACKEND_AUTO jobs go where they finish first);
                             gpu: refuse to start without a GPU; cpu: no GPU workers
+  --gpu-workers N           GPU workers per device, [1, 64] (default 1): each has its own
+                            engine and stream, so that small jobs share the device
   --cpu-workers N           CPU workers, [1, 256] (default 1)
   --cpu-threads N           threads of each CPU worker, [0, 1024] (default 0: the cores
                             shared among the CPU workers)
@@ -83,6 +86,8 @@ const std::map<std::string, Setter>& setters() {
          else
            throw_invalid("--" + f, "must be auto, gpu or cpu (got '" + v + "')");
        }},
+      {"gpu-workers",
+       [](O& o, S f, S v) { o.gpu_workers = static_cast<int>(integer(f, v, 1, 64)); }},
       {"cpu-workers",
        [](O& o, S f, S v) { o.cpu_workers = static_cast<int>(integer(f, v, 1, 256)); }},
       {"cpu-threads",
@@ -189,8 +194,13 @@ std::vector<WorkerSpec> workers_for(const ServerOptions& o) {
     throw Error(ErrorCode::kUnavailable, "--backend",
                 "--backend gpu, but no GPU is visible (or this build has no GPU engine)");
   }
-  for (int d = 0; d < gpus; ++d)
-    out.push_back({"gpu" + std::to_string(d), Backend::kGpu, gpu_engine_factory(d)});
+  for (int d = 0; d < gpus; ++d) {
+    for (int k = 0; k < o.gpu_workers; ++k) {
+      const std::string name =
+          "gpu" + std::to_string(d) + (o.gpu_workers > 1 ? "." + std::to_string(k) : std::string());
+      out.push_back({name, Backend::kGpu, gpu_engine_factory(d)});
+    }
+  }
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const unsigned threads = o.cpu_threads > 0
                                ? o.cpu_threads

@@ -12,6 +12,7 @@ struct ServerOptions {
   std::string listen = "127.0.0.1:50051";  // port 0 picks a free port
   std::string metrics;                     // HOST:PORT for /metrics; empty: none
   Backend backend = Backend::kAuto;        // kCpu: no GPU workers; kGpu: refuse to start without
+  int gpu_workers = 1;  // per visible device
   int cpu_workers = 1;
   unsigned cpu_threads = 0;  // per CPU worker; 0: the cores shared among the CPU workers
   double drain_timeout_s = 30;
@@ -30,7 +31,7 @@ ServerOptions parse_server_options(const std::vector<std::string>& args, bool& h
 // The --help text.
 const char* server_usage();
 
-// One GPU worker per visible device (unless --backend cpu) and the CPU workers. Throws
+// gpu_workers GPU workers per visible device (unless --backend cpu) and the CPU workers. Throws
 // Error(kUnavailable) for --backend gpu on a machine without a GPU.
 std::vector<WorkerSpec> workers_for(const ServerOptions& options);
 

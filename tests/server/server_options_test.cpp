@@ -47,6 +47,8 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
                                  "--metrics=127.0.0.1:9464",
                                  "--backend",
                                  "cpu",
+                                 "--gpu-workers",
+                                 "4",
                                  "--cpu-workers",
                                  "3",
                                  "--cpu-threads=2",
@@ -67,6 +69,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
   EXPECT_EQ(o.listen, "0.0.0.0:0");
   EXPECT_EQ(o.metrics, "127.0.0.1:9464");
   EXPECT_EQ(o.backend, Backend::kCpu);
+  EXPECT_EQ(o.gpu_workers, 4);
   EXPECT_EQ(o.cpu_workers, 3);
   EXPECT_EQ(o.cpu_threads, 2u);
   EXPECT_EQ(o.jobs.queue_capacity, 5u);
@@ -105,6 +108,8 @@ TEST(ServerOptions, ConfigFileThenCommandLine) {
 
 TEST(ServerOptions, BadValuesNameTheFlag) {
   EXPECT_EQ(refused_flag({"--backend", "tpu"}), "--backend");
+  EXPECT_EQ(refused_flag({"--gpu-workers", "0"}), "--gpu-workers");
+  EXPECT_EQ(refused_flag({"--gpu-workers", "65"}), "--gpu-workers");
   EXPECT_EQ(refused_flag({"--cpu-workers", "0"}), "--cpu-workers");
   EXPECT_EQ(refused_flag({"--cpu-workers", "1.5"}), "--cpu-workers");
   EXPECT_EQ(refused_flag({"--queue-capacity", "many"}), "--queue-capacity");
