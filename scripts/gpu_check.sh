@@ -2,8 +2,8 @@
 # Runs on the GPU machine from a bundle of the executables (.gpu/, made by the gpu-bundle tool):
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
-# the overhead). Logs go to $OUT (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|service]...
+# the overhead), and many small jobs through meshd (throughput). Logs go to $OUT (or ./gpu-logs).
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|service|throughput]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -88,5 +88,24 @@ for step in "${steps[@]}"; do
       kill -TERM $meshd_pid; wait $meshd_pid; echo "meshd exit $?"
       $run service_overhead --backend gpu --repeat 5 2>&1 | tee "$out/service_overhead_gpu.log"
       $run service_overhead --backend cpu --repeat 3 2>&1 | tee "$out/service_overhead_cpu.log" ;;
+    throughput)
+      # ~2k-node disks through an in-process meshd: a lone client (latency), then 64 clients
+      # on the GPU with 1 to 16 workers, on the host's CPU cores alone, and on both (auto);
+      # then a mix of 500 to 50k nodes.
+      cores=$(nproc)
+      t() { $run throughput "$@" 2>&1 | tee -a "$out/throughput.log" | tail -n +3; }
+      echo "| jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | on GPU | on CPU | meshd |"
+      t --jobs 300 --clients 1 -- --backend gpu | sed 's/$/ gpu, 1 worker |/'
+      for w in 1 2 4 8 16; do
+        t --jobs 2000 --clients 64 -- --backend gpu --gpu-workers $w | sed "s/\$/ gpu, $w workers |/"
+      done
+      t --jobs 2000 --clients 64 -- --backend cpu --cpu-workers "$cores" --cpu-threads 1 |
+        sed "s/\$/ cpu, $cores workers of 1 thread |/"
+      for w in 4 8; do
+        t --jobs 2000 --clients 64 -- --gpu-workers $w --cpu-workers "$cores" --cpu-threads 1 |
+          sed "s/\$/ auto, $w GPU + $cores CPU workers |/"
+      done
+      t --jobs 1000 --clients 64 --nodes 500,2000,10000,50000 -- --gpu-workers 8 \
+        --cpu-workers "$cores" --cpu-threads 1 | sed "s/\$/ auto, 8 GPU + $cores CPU workers |/" ;;
   esac
 done
