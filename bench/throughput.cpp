@@ -7,8 +7,8 @@
 // as a table for RESULTS.md. Exits 1 when any job failed or went unaccounted.
 //
 //   throughput [--address HOST:PORT] [--jobs N] [--clients C | --rate R] [--nodes N[,N...]]
-//              [--channels K] [--seed S] [--deadline SECONDS] [REQUEST.textproto]
-//              [-- meshd flags...]
+//              [--job-backend auto|gpu|cpu] [--channels K] [--seed S] [--deadline SECONDS]
+//              [REQUEST.textproto] [-- meshd flags...]
 //
 // --nodes rescales the request's h0 to aim at each size; every job picks one at random.
 #include <grpcpp/grpcpp.h>
@@ -49,6 +49,7 @@ struct Options {
   int channels = 4;  // connections, so that one connection's thread is not the limit
   double rate = 0;   // jobs/s; 0: closed loop
   std::vector<double> nodes{2000};
+  std::string job_backend = "auto";  // what each request asks for
   unsigned seed = 1;
   double deadline_s = 120;
   std::string request;  // empty: a unit disk
@@ -57,8 +58,8 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: throughput [--address HOST:PORT] [--jobs N] [--clients C | --rate R]\n"
-               "                  [--nodes N[,N...]] [--channels K] [--seed S]\n"
-               "                  [--deadline SECONDS]\n"
+               "                  [--nodes N[,N...]] [--job-backend auto|gpu|cpu]\n"
+               "                  [--channels K] [--seed S] [--deadline SECONDS]\n"
                "                  [REQUEST.textproto] [-- meshd flags...]\n");
   std::exit(code);
 }
@@ -93,6 +94,8 @@ Options parse(int argc, char** argv) {
       o.rate = std::stod(value());
     else if (a == "--channels")
       o.channels = std::stoi(value());
+    else if (a == "--job-backend")
+      o.job_backend = value();
     else if (a == "--nodes")
       o.nodes = numbers(value());
     else if (a == "--seed")
@@ -105,6 +108,7 @@ Options parse(int argc, char** argv) {
       o.request = a;
   }
   if (o.jobs < 1 || o.clients < 1 || o.channels < 1 || o.rate < 0 || o.nodes.empty()) usage(2);
+  if (o.job_backend != "auto" && o.job_backend != "gpu" && o.job_backend != "cpu") usage(2);
   return o;
 }
 
@@ -222,6 +226,10 @@ std::vector<MeshRequest> requests_for(const Options& o) {
     base = meshd::read_request_file(o.request);
   }
   base.mutable_options()->set_snapshot_every(0);
+  base.mutable_options()->set_backend(o.job_backend == "gpu" ? meshd::v1::JobOptions::BACKEND_GPU
+                                      : o.job_backend == "cpu"
+                                          ? meshd::v1::JobOptions::BACKEND_CPU
+                                          : meshd::v1::JobOptions::BACKEND_AUTO);
   std::vector<MeshRequest> out;
   for (const double n : o.nodes) {
     MeshRequest r = base;
