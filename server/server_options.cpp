@@ -22,7 +22,7 @@ const char* server_usage() {
   --backend auto|gpu|cpu    auto: GPU workers on every visible device and the CPU workers
                             beside them (BACKEND_AUTO jobs go where they finish first);
                             gpu: refuse to start without a GPU; cpu: no GPU workers
-  --gpu-workers N           GPU workers per device, [1, 64] (default 1): each has its own
+  --gpu-workers N           GPU workers per device, [1, 64] (default 4): each has its own
                             engine and stream, so that small jobs share the device
   --cpu-workers N           CPU workers, [1, 256] (default 1)
   --cpu-threads N           threads of each CPU worker, [0, 1024] (default 0: the cores

@@ -33,6 +33,7 @@ TEST(ServerOptions, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(o.listen, "127.0.0.1:50051");
   EXPECT_EQ(o.metrics, "");
   EXPECT_EQ(o.backend, Backend::kAuto);
+  EXPECT_EQ(o.gpu_workers, 4);
   EXPECT_EQ(o.cpu_workers, 1);
   EXPECT_EQ(o.jobs.queue_capacity, 64u);
   EXPECT_EQ(o.jobs.retention, std::chrono::minutes(10));
@@ -48,7 +49,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
                                  "--backend",
                                  "cpu",
                                  "--gpu-workers",
-                                 "4",
+                                 "2",
                                  "--cpu-workers",
                                  "3",
                                  "--cpu-threads=2",
@@ -69,7 +70,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
   EXPECT_EQ(o.listen, "0.0.0.0:0");
   EXPECT_EQ(o.metrics, "127.0.0.1:9464");
   EXPECT_EQ(o.backend, Backend::kCpu);
-  EXPECT_EQ(o.gpu_workers, 4);
+  EXPECT_EQ(o.gpu_workers, 2);
   EXPECT_EQ(o.cpu_workers, 3);
   EXPECT_EQ(o.cpu_threads, 2u);
   EXPECT_EQ(o.jobs.queue_capacity, 5u);
