@@ -1,0 +1,44 @@
+"""meshd: a Python client of the meshd DistMesh service.
+
+    import meshd
+    client = meshd.Client("127.0.0.1:50051")
+    mesh = client.generate(meshd.request(meshd.circle(1) - meshd.circle(0.3), h0=0.05),
+                           progress=True)
+    mesh.points, mesh.triangles          # #N by 2 float64, #M by 3 int32
+    mesh.to_meshio().write("ring.vtu")
+
+Geometry: circle, rectangle, polygon, ellipse, half_plane; | & - and union, intersection,
+difference; .translate(), .rotate(), .scale(), .named(). Size: uniform, graded. Requests:
+request(). Clients: Client and aio.Client. Events: Queued, Started, Progress, Snapshot, Done.
+Errors: MeshdError and its subclasses. The meshd.v1 messages and stubs are generated from the
+repository's proto/ when the package is built.
+"""
+
+from meshd import aio
+from meshd.client import Client
+from meshd.connection import tls_credentials
+from meshd.errors import (BadResult, Cancelled, DeadlineExceeded, FailedPrecondition, Internal,
+                          InvalidArgument, MeshdError, NotFound, PermissionDenied,
+                          ResourceExhausted, Unauthenticated, Unavailable)
+from meshd.events import Done, Progress, Queued, Snapshot, Started
+from meshd.geometry import (Shape, circle, difference, ellipse, half_plane, intersection,
+                            polygon, rectangle, union)
+from meshd.job_info import JobInfo
+from meshd.mesh import Mesh, Quality, RunStats
+from meshd.request import request
+from meshd.size_field import graded, uniform
+from meshd.v1 import geometry_pb2, mesh_pb2, request_pb2, service_pb2
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "aio", "Client", "tls_credentials",
+    "MeshdError", "InvalidArgument", "NotFound", "Unavailable", "DeadlineExceeded", "Cancelled",
+    "ResourceExhausted", "FailedPrecondition", "Unauthenticated", "PermissionDenied", "Internal",
+    "BadResult",
+    "Queued", "Started", "Progress", "Snapshot", "Done",
+    "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "union", "intersection",
+    "difference",
+    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded",
+    "geometry_pb2", "mesh_pb2", "request_pb2", "service_pb2",
+]

@@ -1,0 +1,200 @@
+"""Geometry builders: a CSG tree of shapes written as Python expressions, built as the
+meshd.v1.Shape message the server reads.
+
+    domain = (meshd.rectangle((-1, -1), (1, 1)).named("outer")
+              - meshd.circle(0.5).named("hole"))
+    ring = meshd.circle(1) - meshd.circle(0.3)
+    lens = meshd.circle(1, center=(-0.5, 0)) & meshd.circle(1, center=(0.5, 0))
+    tooth = meshd.rectangle((0.9, -0.1), (1.2, 0.1)).rotate(30)
+
+`a | b` is the union, `a & b` the intersection, `a - b` the difference; chains of the same
+operation become one n-ary node. Lengths are in the request's length unit, angles in degrees.
+Shapes are immutable: every operation returns a new one.
+"""
+
+from meshd.v1 import geometry_pb2
+
+
+def _vec2(xy, what):
+    """A Vec2 from any pair of numbers; `what` names the argument in the error."""
+    try:
+        x, y = (float(v) for v in xy)
+    except (TypeError, ValueError):
+        raise TypeError(f"{what}: expected a point (x, y), got {xy!r}") from None
+    return geometry_pb2.Vec2(x=x, y=y)
+
+
+class Shape:
+    """One node of the geometry tree. `proto` is a meshd.v1.Shape (a copy: changing it leaves
+    this shape alone)."""
+
+    __slots__ = ("_proto",)
+
+    def __init__(self, proto):
+        self._proto = proto
+
+    @property
+    def proto(self):
+        copy = geometry_pb2.Shape()
+        copy.CopyFrom(self._proto)
+        return copy
+
+    @property
+    def kind(self):
+        """"circle", "union", "translate", ...: which of the proto's kinds this node is."""
+        return self._proto.WhichOneof("kind")
+
+    @property
+    def name(self):
+        return self._proto.name
+
+    def named(self, name):
+        """This shape with a boundary-group name: the primitives at or below it that have no
+        name of their own put their boundary edges in group `name`."""
+        proto = self.proto
+        proto.name = name
+        return Shape(proto)
+
+    # ---- operations ---------------------------------------------------------------------------
+
+    def __or__(self, other):
+        return union(self, other)
+
+    def __and__(self, other):
+        return intersection(self, other)
+
+    def __sub__(self, other):
+        return difference(self, other)
+
+    # ---- transforms ---------------------------------------------------------------------------
+
+    def translate(self, offset):
+        """This shape moved by offset (dx, dy)."""
+        proto = geometry_pb2.Shape()
+        proto.translate.offset.CopyFrom(_vec2(offset, "offset"))
+        proto.translate.shape.CopyFrom(self._proto)
+        return Shape(proto)
+
+    def rotate(self, angle_deg, center=(0.0, 0.0)):
+        """This shape turned counter-clockwise by angle_deg degrees about center."""
+        proto = geometry_pb2.Shape()
+        proto.rotate.angle_deg = float(angle_deg)
+        proto.rotate.center.CopyFrom(_vec2(center, "center"))
+        proto.rotate.shape.CopyFrom(self._proto)
+        return Shape(proto)
+
+    def scale(self, factor, center=(0.0, 0.0)):
+        """This shape scaled by factor (> 0) about center."""
+        proto = geometry_pb2.Shape()
+        proto.scale.factor = float(factor)
+        proto.scale.center.CopyFrom(_vec2(center, "center"))
+        proto.scale.shape.CopyFrom(self._proto)
+        return Shape(proto)
+
+    def __repr__(self):
+        from google.protobuf import text_format
+        return f"meshd.Shape({text_format.MessageToString(self._proto, as_one_line=True)})"
+
+
+def as_shape_proto(shape):
+    """A meshd.v1.Shape from a Shape or a meshd.v1.Shape message (copied)."""
+    if isinstance(shape, Shape):
+        return shape.proto
+    if isinstance(shape, geometry_pb2.Shape):
+        copy = geometry_pb2.Shape()
+        copy.CopyFrom(shape)
+        return copy
+    raise TypeError(f"expected a meshd.Shape, got {type(shape).__name__}")
+
+
+def _primitive(kind, name, fill):
+    proto = geometry_pb2.Shape()
+    if name:
+        proto.name = name
+    fill(getattr(proto, kind))
+    return Shape(proto)
+
+
+# ---- primitives -------------------------------------------------------------------------------
+
+def circle(radius=1.0, center=(0.0, 0.0), name=None):
+    """The disk of radius (> 0) about center."""
+    def fill(c):
+        c.center.CopyFrom(_vec2(center, "center"))
+        c.radius = float(radius)
+    return _primitive("circle", name, fill)
+
+
+def rectangle(min, max, name=None):  # noqa: A002 (the proto's field names)
+    """The axis-aligned rectangle from corner min (x0, y0) to corner max (x1, y1)."""
+    def fill(r):
+        r.min.CopyFrom(_vec2(min, "min"))
+        r.max.CopyFrom(_vec2(max, "max"))
+    return _primitive("rectangle", name, fill)
+
+
+def polygon(vertices, name=None):
+    """The simple polygon through vertices: #V by 2 (a list of (x, y) or a numpy array), either
+    orientation, the first vertex not repeated at the end."""
+    def fill(p):
+        for i, xy in enumerate(vertices):
+            p.vertices.append(_vec2(xy, f"vertices[{i}]"))
+    return _primitive("polygon", name, fill)
+
+
+def ellipse(semi_axis_x, semi_axis_y, center=(0.0, 0.0), name=None):
+    """The axis-aligned ellipse with these semi axes (> 0) about center."""
+    def fill(e):
+        e.center.CopyFrom(_vec2(center, "center"))
+        e.semi_axis_x = float(semi_axis_x)
+        e.semi_axis_y = float(semi_axis_y)
+    return _primitive("ellipse", name, fill)
+
+
+def half_plane(normal, offset=0.0, name=None):
+    """The half-plane dot(normal, p) <= offset. Unbounded: the request needs a bbox."""
+    def fill(h):
+        h.normal.CopyFrom(_vec2(normal, "normal"))
+        h.offset = float(offset)
+    return _primitive("half_plane", name, fill)
+
+
+# ---- operations -------------------------------------------------------------------------------
+
+def _nary(kind, shapes):
+    """A union or intersection node of shapes; an unnamed operand of the same kind is merged in
+    (a named one keeps its node, since its name applies to its own primitives only)."""
+    if not shapes:
+        raise ValueError(f"{kind} of no shapes")
+    proto = geometry_pb2.Shape()
+    children = getattr(proto, kind).shapes
+    for shape in shapes:
+        child = as_shape_proto(shape)
+        if child.WhichOneof("kind") == kind and not child.name:
+            children.extend(getattr(child, kind).shapes)
+        else:
+            children.append(child)
+    return Shape(proto)
+
+
+def union(*shapes):
+    """The union of one or more shapes (also `a | b`)."""
+    return _nary("union", shapes)
+
+
+def intersection(*shapes):
+    """The intersection of one or more shapes (also `a & b`)."""
+    return _nary("intersection", shapes)
+
+
+def difference(base, *subtract):
+    """base minus every shape of subtract (also `a - b`; `a - b - c` is one node)."""
+    base_proto = as_shape_proto(base)
+    proto = geometry_pb2.Shape()
+    if base_proto.WhichOneof("kind") == "difference" and not base_proto.name:
+        proto.difference.CopyFrom(base_proto.difference)
+    else:
+        proto.difference.base.CopyFrom(base_proto)
+    for shape in subtract:
+        proto.difference.subtract.append(as_shape_proto(shape))
+    return Shape(proto)
