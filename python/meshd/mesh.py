@@ -114,16 +114,19 @@ class Mesh:
 
     def to_meshio(self):
         """A meshio.Mesh: triangles and boundary lines, with gmsh:physical / gmsh:geometrical
-        tags and field_data naming the groups (so .msh keeps them) and the triangles' quality
-        as cell data (as meshd's VTU writer has it). Points get z = 0, which most formats need."""
+        tags, gmsh:dim_tags and field_data naming the groups (so .msh keeps them), and the
+        triangles' quality as cell data (as meshd's VTU writer has it). Points get z = 0, which
+        most formats need."""
         import meshio  # optional: pip install meshio, Debian python3-meshio
 
         points = np.zeros((len(self.points), 3))
         points[:, :2] = self.points
         group_tags = self.boundary_tags + DOMAIN_PHYSICAL_TAG + 1
         domain_tags = np.full(len(self.triangles), DOMAIN_PHYSICAL_TAG, dtype=np.int32)
-        # Gmsh entities: the surface 1 and one curve per boundary group; a node lies on the
-        # curve of an edge it ends, else inside the surface (meshio's MSH 4.1 writer needs it).
+        # Gmsh entities, which meshio's MSH 4.1 writer takes from the nodes: the surface 1 and
+        # one curve per boundary group; a node lies on the curve of an edge it starts, else
+        # inside the surface. The writer groups the nodes by entity, so a .msh read back has
+        # the same nodes and triangles in another order.
         dim_tags = np.tile([2, DOMAIN_PHYSICAL_TAG], (len(self.points), 1))
         dim_tags[self.boundary_edges[:, 0]] = np.column_stack(
             [np.ones_like(group_tags), group_tags])

@@ -60,11 +60,13 @@ def request(geometry, h0, size=None, *, bbox=None, fixed_points=(), auto_corners
     for name, value in params.items():
         setattr(req.params, name, value)
 
-    options = req.options
-    options.backend = BACKENDS[backend]
-    options.priority = int(priority)
-    options.snapshot_every = int(snapshot_every)
-    options.snapshot_max_nodes = int(snapshot_max_nodes)
-    options.timeout_s = float(timeout_s)
-    options.label = label
+    # Only values that differ from the defaults, so that an all-default request carries no
+    # options message at all, like one parsed from text that does not mention it.
+    options = {"backend": BACKENDS[backend], "priority": int(priority),
+               "snapshot_every": int(snapshot_every),
+               "snapshot_max_nodes": int(snapshot_max_nodes), "timeout_s": float(timeout_s),
+               "label": label}
+    for name, value in options.items():
+        if value:
+            setattr(req.options, name, value)
     return req
