@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""The installed meshd package without a server: geometry builders and meshd.request() against
+the repository's example requests, error parsing, and the event decoder's checks.
+
+    builder_checks.py --examples DIR       (run with the interpreter the package is installed in)
+"""
+
+import argparse
+import hashlib
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_runner import run_checks  # noqa: E402
+
+import grpc  # noqa: E402
+import numpy as np  # noqa: E402
+from google.protobuf import text_format  # noqa: E402
+
+import meshd  # noqa: E402
+from meshd.errors import error_for_status  # noqa: E402
+from meshd.events import EventDecoder  # noqa: E402
+from meshd.v1 import mesh_pb2, request_pb2, service_pb2  # noqa: E402
+
+
+def read_example(examples, name):
+    with open(os.path.join(examples, name)) as f:
+        return text_format.Parse(f.read(), request_pb2.MeshRequest())
+
+
+def same(built, expected, what):
+    assert built == expected, (f"{what} differs:\nbuilt:\n{text_format.MessageToString(built)}"
+                               f"expected:\n{text_format.MessageToString(expected)}")
+
+
+def test_installed_package(examples):
+    # Imported from the venv, not from a source folder, with stubs the build generated.
+    assert meshd.__file__.startswith(sys.prefix), f"meshd from {meshd.__file__}"
+    stubs = os.path.dirname(request_pb2.__file__)
+    assert os.path.basename(stubs) == "v1" and stubs.startswith(sys.prefix), stubs
+    assert "h0" in request_pb2.MeshRequest.DESCRIPTOR.fields_by_name
+    assert hasattr(meshd.aio, "Client") and callable(meshd.Client)
+
+
+def test_examples_from_builders(examples):
+    """G2, G5 and the ring of meshctl's --circle/--hole, built in Python, equal their files."""
+    outer = meshd.rectangle((-1, -1), (1, 1)).named("outer")
+    g2 = meshd.request(outer - meshd.circle(0.5).named("hole"), h0=0.04, auto_corners=True)
+    same(g2, read_example(examples, "g2_square_hole.textproto"), "G2")
+    g5 = meshd.request(outer - meshd.circle(0.5, name="hole"), h0=0.025,
+                       size=meshd.graded(meshd.circle(0.5), h_min=1, slope=4, h_max=2),
+                       auto_corners=True)
+    same(g5, read_example(examples, "g5_graded_hole.textproto"), "G5")
+    g1 = meshd.request(meshd.circle(1), h0=0.04)
+    expected = read_example(examples, "g1_disk.textproto")
+    assert g1.geometry.circle.radius == expected.geometry.circle.radius and g1.h0 == expected.h0
+
+
+def test_operators(examples):
+    a, b, c = meshd.circle(1), meshd.rectangle((0, 0), (1, 1)), meshd.ellipse(2, 1)
+    u = (a | b) | c
+    assert u.kind == "union" and len(u.proto.union.shapes) == 3, u
+    i = a & b & c
+    assert i.kind == "intersection" and len(i.proto.intersection.shapes) == 3, i
+    d = a - b - c
+    assert d.kind == "difference" and len(d.proto.difference.subtract) == 2, d
+    assert d.proto.difference.base == a.proto
+    # A named operand keeps its own node: its name covers its own primitives only.
+    named = (a | b).named("pair") | c
+    assert [s.WhichOneof("kind") for s in named.proto.union.shapes] == ["union", "ellipse"]
+    assert (a - b).named("x") - c != a - b - c
+    # Shapes are values: an operation leaves its operands alone.
+    assert a.proto == meshd.circle(1).proto and not a.name
+
+
+def test_primitives_and_transforms(examples):
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
+    p = meshd.polygon(square, name="sq").proto
+    assert p.name == "sq" and [(v.x, v.y) for v in p.polygon.vertices] == [tuple(v) for v in square]
+    h = meshd.half_plane((0, 1), 0.5).proto.half_plane
+    assert (h.normal.x, h.normal.y, h.offset) == (0, 1, 0.5)
+    e = meshd.ellipse(2, 1, center=(1, 2)).proto.ellipse
+    assert (e.semi_axis_x, e.semi_axis_y, e.center.x, e.center.y) == (2, 1, 1, 2)
+    t = meshd.circle(1).translate((2, 3)).rotate(30, center=(1, 1)).scale(2).proto
+    assert t.scale.factor == 2 and t.scale.shape.rotate.angle_deg == 30
+    assert t.scale.shape.rotate.center.x == 1
+    moved = t.scale.shape.rotate.shape.translate
+    assert (moved.offset.x, moved.offset.y, moved.shape.circle.radius) == (2, 3, 1)
+    for bad in (lambda: meshd.circle(1, center=(1,)), lambda: meshd.polygon([(0, 0), "ab"])):
+        try:
+            bad()
+            raise AssertionError("a malformed point was accepted")
+        except TypeError:
+            pass
+
+
+def test_request_fields(examples):
+    hole = meshd.circle(0.3)
+    req = meshd.request(meshd.circle(1) - hole, h0=0.05,
+                        size=[meshd.graded(hole, 1, 3, 2), 1.5], bbox=((-1, -1), (1, 1)),
+                        fixed_points=[(0.5, 0)], auto_corners=False, seed=7, backend="cpu",
+                        priority=3, snapshot_every=10, timeout_s=30, label="ring",
+                        dptol=0.002, max_iterations=500, cleanup=False)
+    assert [t.WhichOneof("kind") for t in req.size.terms] == ["distance", "uniform"]
+    assert req.size.terms[1].uniform.value == 1.5 and req.size.terms[0].distance.slope == 3
+    assert (req.bbox.max.x, req.fixed_points[0].x, req.seed) == (1, 0.5, 7)
+    assert req.HasField("auto_corners") and not req.auto_corners
+    assert req.options.backend == request_pb2.JobOptions.BACKEND_CPU
+    assert (req.options.priority, req.options.snapshot_every, req.options.label) == (3, 10, "ring")
+    assert req.params.dptol == 0.002 and req.params.max_iterations == 500
+    assert req.params.HasField("cleanup") and not req.params.HasField("ttol")
+    for kwargs, error in (({"dtpol": 1}, TypeError), ({"backend": "tpu"}, ValueError)):
+        try:
+            meshd.request(hole, h0=0.1, **kwargs)
+            raise AssertionError(f"request accepted {kwargs}")
+        except error as e:
+            assert list(kwargs)[0] in str(e) or "tpu" in str(e), str(e)
+
+
+def test_error_parsing(examples):
+    path = "geometry.difference.subtract[0].circle.radius"
+    e = error_for_status(grpc.StatusCode.INVALID_ARGUMENT, f"{path}: must be finite and > 0 (got -0.5)")
+    assert isinstance(e, meshd.InvalidArgument) and isinstance(e, meshd.MeshdError)
+    assert (e.field, e.reason) == (path, "must be finite and > 0 (got -0.5)"), (e.field, e.reason)
+    assert e.code == grpc.StatusCode.INVALID_ARGUMENT and path in str(e)
+    for code, message, cls in (
+            (grpc.StatusCode.UNAVAILABLE, "the server is shutting down", meshd.Unavailable),
+            (grpc.StatusCode.INTERNAL, "internal error: x: y", meshd.Internal),
+            (grpc.StatusCode.UNAUTHENTICATED, "wrong bearer token", meshd.Unauthenticated),
+            (grpc.StatusCode.ABORTED, "", meshd.MeshdError)):
+        e = error_for_status(code, message)
+        assert type(e) is cls and e.field is None and e.code == code, (code, message, e.field)
+    e = error_for_status(grpc.StatusCode.NOT_FOUND, "job_id: no job 'x' on this server")
+    assert isinstance(e, meshd.NotFound) and e.field == "job_id"
+
+
+def result_events(mesh, chunk_bytes):
+    """The result part of a stream for mesh: chunks of chunk_bytes, then done."""
+    payload = mesh.SerializeToString()
+    events = []
+    pieces = [payload[i:i + chunk_bytes] for i in range(0, len(payload), chunk_bytes)]
+    for k, piece in enumerate(pieces):
+        e = service_pb2.MeshEvent(job_id="j1")
+        e.result_chunk.index, e.result_chunk.count = k, len(pieces)
+        e.result_chunk.offset, e.result_chunk.total_bytes = k * chunk_bytes, len(payload)
+        e.result_chunk.data = piece
+        events.append(e)
+    done = service_pb2.MeshEvent(job_id="j1")
+    done.done.result_bytes = len(payload)
+    done.done.result_sha256 = hashlib.sha256(payload).hexdigest()
+    done.done.nodes, done.done.triangles = 3, 1
+    return events + [done]
+
+
+def test_event_decoder(examples):
+    data = mesh_pb2.MeshData(points=[0, 0, 1, 0, 0, 1], triangles=[0, 1, 2],
+                             boundary_edges=[0, 1, 1, 2, 2, 0], boundary_tags=[0, 0, 1],
+                             boundary_names=["a", "b"])
+    decoder = EventDecoder()
+    decoded = [decoder.feed(e) for e in result_events(data, 10)]
+    assert all(e is None for e in decoded[:-1]) and isinstance(decoded[-1], meshd.Done)
+    mesh = decoder.finish().mesh
+    assert mesh.points.shape == (3, 2) and mesh.triangles.tolist() == [[0, 1, 2]]
+    assert mesh.boundary_groups["a"].tolist() == [[0, 1], [1, 2]] and mesh.areas()[0] == 0.5
+    # Out of order, a wrong checksum, no done: each is BadResult.
+    events = result_events(data, 10)
+    swapped, corrupt = events[1:2] + events[:1] + events[2:], [e.__deepcopy__() for e in events]
+    corrupt[0].result_chunk.data = b"\0" * len(corrupt[0].result_chunk.data)
+    for name, stream in (("swapped", swapped), ("corrupt", corrupt), ("no done", events[:-1])):
+        decoder = EventDecoder()
+        try:
+            for e in stream:
+                decoder.feed(e)
+            decoder.finish()
+            raise AssertionError(f"{name} stream accepted")
+        except meshd.BadResult as e:
+            assert e.code == grpc.StatusCode.DATA_LOSS, e
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--examples", required=True)
+    args = parser.parse_args()
+    return run_checks([test_installed_package, test_examples_from_builders, test_operators,
+                       test_primitives_and_transforms, test_request_fields, test_error_parsing,
+                       test_event_decoder], args.examples)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
