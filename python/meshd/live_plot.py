@@ -15,12 +15,13 @@ REDRAW_INTERVAL_S = 0.2
 class LivePlot:
     def __init__(self, request=None, size_inches=(5, 5)):
         import matplotlib.pyplot as plt
-        from IPython.display import display
+        from IPython.display import DisplayHandle
 
         self.plt = plt
         self.fig, self.ax = plt.subplots(figsize=size_inches)
         plt.close(self.fig)  # shown through the display handle only, not again at cell end
-        self.handle = display(self.fig, display_id=True)
+        self.handle = DisplayHandle()
+        self.handle.display(self.fig)
         self.title = "queued"
         self.last_draw = 0.0
 
@@ -43,7 +44,9 @@ class LivePlot:
         if len(triangles) and triangles.max() >= len(points):
             return
         self.ax.clear()
-        self.ax.triplot(points[:, 0], points[:, 1], triangles, linewidth=0.4, color="k")
+        # Thinner lines for more triangles, so that a large mesh is not a black blot.
+        width = min(0.5, 40.0 / max(1.0, len(triangles)) ** 0.5)
+        self.ax.triplot(points[:, 0], points[:, 1], triangles, linewidth=width, color="k")
         self.ax.set_aspect("equal")
         self.ax.set_title(title)
         self._show()

@@ -20,12 +20,32 @@ STOP_MOVE_FACTOR = 10.0
 
 
 def settled_fraction(first_move, move, target):
-    """How far the largest move has come down from first_move to target, on a log scale: an
-    estimate in [0, 1] of how much of the run is behind, for a bar without a known length."""
+    """How far the largest move has come down from first_move to target, on a log scale, in
+    [0, 1]."""
     if first_move <= target or move <= 0:
         return 1.0
     done = math.log(first_move / max(move, target)) / math.log(first_move / target)
     return min(1.0, max(0.0, done))
+
+
+class SettlingEstimate:
+    """An estimate of how much of a run is behind, for a bar without a known length: the
+    settled fraction of the largest move, never going back within one level (the move is
+    noisy), starting again when a multilevel run refines (its nodes grow several times)."""
+
+    REFINED_GROWTH = 1.5
+
+    def __init__(self, request):
+        self.target = _target_move(request)
+        self.first_move, self.nodes, self.fraction = None, 0, 0.0
+
+    def update(self, progress):
+        if self.first_move is None or progress.nodes > self.REFINED_GROWTH * self.nodes:
+            self.first_move, self.fraction = progress.max_move, 0.0
+        self.nodes = progress.nodes
+        self.fraction = max(self.fraction,
+                            settled_fraction(self.first_move, progress.max_move, self.target))
+        return self.fraction
 
 
 def _target_move(request):
@@ -49,8 +69,7 @@ class TextBar:
         self.stream = stream or sys.stderr
         self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
         self.interval = 0.1 if self.tty else 1.0
-        self.target = _target_move(request)
-        self.first_move = None
+        self.estimate = SettlingEstimate(request)
         self.last_draw = -math.inf
 
     def __call__(self, event):
@@ -59,16 +78,16 @@ class TextBar:
         elif isinstance(event, Started):
             self._line(f"started on {event.device}")
         elif isinstance(event, Progress):
-            self.first_move = self.first_move or event.max_move
+            fraction = self.estimate.update(event)
             now = time.monotonic()
             if now - self.last_draw >= self.interval:
                 self.last_draw = now
-                self._draw(event)
+                self._draw(event, fraction)
         elif isinstance(event, Done):
             self._line(f"done: {summary(event.mesh)}")
 
-    def _draw(self, p):
-        filled = round(self.WIDTH * settled_fraction(self.first_move, p.max_move, self.target))
+    def _draw(self, p, fraction):
+        filled = round(self.WIDTH * fraction)
         bar = "#" * filled + "." * (self.WIDTH - filled)
         text = (f"[{bar}] iteration {p.iteration}  max move {p.max_move:.1e} h0  "
                 f"{p.nodes} nodes  {p.elapsed_s:.2f} s")
@@ -92,14 +111,12 @@ class TqdmBar:
 
     def __init__(self, request=None):
         from tqdm.auto import tqdm
-        self.bar = tqdm(total=100, unit="%", bar_format="{l_bar}{bar}| {postfix}")
-        self.target = _target_move(request)
-        self.first_move = None
+        self.bar = tqdm(total=100, unit="%", bar_format="{l_bar}{bar}| {elapsed}{postfix}")
+        self.estimate = SettlingEstimate(request)
 
     def __call__(self, event):
         if isinstance(event, Progress):
-            self.first_move = self.first_move or event.max_move
-            percent = round(100 * settled_fraction(self.first_move, event.max_move, self.target))
+            percent = round(100 * self.estimate.update(event))
             self.bar.update(percent - self.bar.n)
             self.bar.set_postfix_str(f"iteration {event.iteration}, {event.nodes} nodes",
                                      refresh=False)
