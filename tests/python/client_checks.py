@@ -16,6 +16,7 @@ import io
 import math
 import os
 import socket
+import subprocess
 import sys
 import time
 
@@ -250,17 +251,65 @@ def test_deadline_exceeded(ctx):
     check_ring(ctx.client.generate(ring()))
 
 
+def test_optional_reporters(ctx):
+    """tqdm's bar and the live plot, where tqdm, matplotlib and IPython are installed."""
+    available = []
+    with contextlib.redirect_stderr(io.StringIO()) as text:
+        try:
+            ctx.client.generate(ring(), progress="tqdm")
+            assert "100%" in text.getvalue(), text.getvalue()
+            available.append("tqdm")
+        except ImportError:
+            pass
+    try:
+        os.environ.setdefault("MPLBACKEND", "Agg")
+        from meshd.live_plot import LivePlot
+        with contextlib.redirect_stdout(io.StringIO()):  # outside Jupyter, display() prints
+            plot = LivePlot()
+            mesh = ctx.client.generate(ring(0.05, snapshot_every=10), progress=plot)
+        assert plot.ax.get_title().startswith(f"{len(mesh.points)} nodes"), plot.ax.get_title()
+        assert len(plot.ax.lines) > 0, "nothing drawn"
+        available.append("live plot")
+    except ImportError:
+        pass
+    if not available:
+        raise Skip("neither tqdm nor matplotlib with IPython is installed")
+    print(f"  checked: {', '.join(available)}")
+
+
+def test_plate_example(ctx):
+    """examples/python/plate.py, run as a user would: a file with its groups, and a bad h0."""
+    try:
+        import meshio
+    except ImportError:
+        raise Skip("no meshio (python3-meshio)")
+    out = os.path.join(ctx.tmp, "plate.msh")
+    command = [sys.executable, ctx.plate, "--server", ctx.address, "--deadline", str(TIMEOUT_S)]
+    r = subprocess.run(command + ["--h0", "0.08", out], capture_output=True, text=True,
+                       timeout=TIMEOUT_S)
+    assert r.returncode == 0 and "wrote " in r.stdout, f"exit {r.returncode}\n{r.stderr}"
+    back = meshio.read(out)
+    assert {"plate", "holes", "domain"} <= set(back.field_data), back.field_data
+    r = subprocess.run(command + ["--h0", "-1", out + ".bad"], capture_output=True, text=True,
+                       timeout=TIMEOUT_S)
+    assert r.returncode == 1 and "(field h0)" in r.stderr, f"exit {r.returncode}\n{r.stderr}"
+    assert not os.path.exists(out + ".bad"), "a failed request wrote its output"
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--meshd", required=True)
     parser.add_argument("--tmp", required=True)
+    parser.add_argument("--plate", required=True, help="examples/python/plate.py")
     args = parser.parse_args()
     with MeshdChild(args.meshd, "--cpu-workers", "2", "--cpu-threads", "1") as server:
         ctx = argparse.Namespace(binary=args.meshd, tmp=args.tmp, address=server.address,
+                                 plate=args.plate,
                                  client=meshd.Client(server.address, timeout=TIMEOUT_S))
         tests = [test_generate, test_to_meshio, test_snapshots, test_submit_watch_jobs, test_aio,
                  test_invalid_argument, test_not_found, test_unavailable, test_unauthenticated,
-                 test_cancelled, test_deadline_exceeded]
+                 test_optional_reporters, test_plate_example, test_cancelled,
+                 test_deadline_exceeded]
         status = run_checks(tests, ctx,
                             on_failure=lambda: print(f"  meshd's log:\n  {server.log()}"))
         ctx.client.close()

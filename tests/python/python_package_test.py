@@ -88,7 +88,9 @@ def main():
     failures = 0
     for script, extra in (("builder_checks.py", ["--examples",
                                                  os.path.join(args.source_dir, "examples")]),
-                          ("client_checks.py", ["--meshd", args.meshd, "--tmp", work])):
+                          ("client_checks.py", ["--meshd", args.meshd, "--tmp", work, "--plate",
+                                                os.path.join(args.source_dir, "examples",
+                                                             "python", "plate.py")])):
         r = subprocess.run([python, os.path.join(HERE, script), *extra], env=env, timeout=240)
         failures += r.returncode != 0
     print(f"{failures} of 2 check scripts failed" if failures else "both check scripts passed")
