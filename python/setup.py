@@ -13,6 +13,7 @@ used when it is importable.
 """
 
 import glob
+import importlib.util
 import os
 import re
 import shutil
@@ -41,12 +42,10 @@ def protoc_command():
     plugin = os.environ.get("MESHD_GRPC_PYTHON_PLUGIN") or shutil.which("grpc_python_plugin")
     if protoc and plugin:
         return [protoc, f"--plugin=protoc-gen-grpc_python={plugin}"]
-    try:
-        import grpc_tools  # noqa: F401
+    if importlib.util.find_spec("grpc_tools") is not None:
         return [sys.executable, "-m", "grpc_tools.protoc"]
-    except ImportError:
-        sys.exit("meshd: generating the gRPC stubs needs protoc and grpc_python_plugin (Debian: "
-                 "protobuf-compiler protobuf-compiler-grpc) or grpcio-tools")
+    sys.exit("meshd: generating the gRPC stubs needs protoc and grpc_python_plugin (Debian: "
+             "protobuf-compiler protobuf-compiler-grpc) or grpcio-tools")
 
 
 def generate_stubs(out_root):

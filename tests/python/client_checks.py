@@ -1,87 +1,26 @@
 #!/usr/bin/env python3
-"""The installed meshd package against a real meshd: meshes as arrays and files, submit, watch,
-cancel, jobs, the asyncio client, the bearer token, and a failure of each kind.
+"""The installed meshd package against a real meshd: meshes as arrays and files, snapshots,
+submit, watch, jobs, the asyncio client, the progress reporters and examples/python/plate.py.
 
-    client_checks.py --meshd BIN --tmp DIR   (run with the interpreter the package is installed in)
-
-Starts `BIN --listen 127.0.0.1:0 --backend cpu --cpu-workers 2 --cpu-threads 1` (and a second
-one with --token-file for the token check). Every assertion is about what comes back, never
-about how long it took.
+    client_checks.py --meshd BIN --tmp DIR --plate PLATE.py
+        (run with the interpreter the package is installed in)
 """
 
-import argparse
 import asyncio
 import contextlib
 import io
-import math
 import os
-import socket
 import subprocess
 import sys
-import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, os.pardir, "client"))
-from check_runner import Skip, run_checks  # noqa: E402
-from meshd_child import MeshdChild  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_runner import Skip  # noqa: E402
+from client_helpers import (TIMEOUT_S, check_ring, expect_async, main, ring)  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 import meshd  # noqa: E402
 
-TIMEOUT_S = 120  # every call's deadline: a hang fails instead of blocking
-# A disk of about 226,000 nodes: far more than any machine meshes within SHORT_DEADLINE_S on
-# two CPU threads, so that a deadline or a cancel always lands while it runs.
-BIG = meshd.request(meshd.circle(1), h0=0.004, backend="cpu")
-SHORT_DEADLINE_S = 0.2
-
-
-def ring(h0=0.1, **options):
-    """A ring with named boundary groups: outer radius 1, hole radius 0.3."""
-    shape = meshd.circle(1).named("outer") - meshd.circle(0.3).named("hole")
-    return meshd.request(shape, h0=h0, backend="cpu", **options)
-
-
-def check_ring(mesh):
-    n, m = len(mesh.points), len(mesh.triangles)
-    assert mesh.points.shape == (n, 2) and mesh.points.dtype == np.float64 and n > 100
-    assert mesh.triangles.shape == (m, 3) and m > n, mesh
-    assert mesh.triangles.min() >= 0 and mesh.triangles.max() < n, "triangle index out of range"
-    areas = mesh.areas()
-    assert (areas > 0).all(), f"{(areas <= 0).sum()} triangles with area <= 0"
-    # Both boundaries are inscribed polygons: the outer one loses area, the hole gives some back.
-    exact = math.pi * (1 - 0.3 ** 2)
-    assert abs(areas.sum() - exact) < 0.02 * exact, f"area {areas.sum()}, ring {exact}"
-    assert sorted(mesh.boundary_names) == ["hole", "outer"], mesh.boundary_names
-    for name, radius in (("outer", 1.0), ("hole", 0.3)):
-        edges = mesh.boundary_groups[name]
-        r = np.linalg.norm(mesh.points[edges.ravel()], axis=1)
-        assert len(edges) > 10 and np.allclose(r, radius, atol=1e-6), f"{name} off its circle"
-    assert abs(mesh.triangle_quality().min() - mesh.quality.q_min) < 1e-6, mesh.quality
-    assert mesh.quality.q_min > 0.5 and mesh.stats.converged and mesh.backend == "cpu", mesh
-    assert sum(mesh.quality.histogram) == m
-
-
-def expect(error, call):
-    """Runs call() and returns the exception of type error it raises; fails otherwise."""
-    try:
-        result = call()
-    except error as e:
-        assert isinstance(e, meshd.MeshdError) and e.code == error.code, e
-        return e
-    raise AssertionError(f"expected {error.__name__}, got {result!r}")
-
-
-def wait_for_state(client, job_id, states):
-    deadline = time.monotonic() + 60
-    while (info := client.job(job_id)).state not in states:
-        assert time.monotonic() < deadline, f"job {job_id} still {info.state}"
-        time.sleep(0.05)
-    return info
-
-
-# ---- sub-tests ----------------------------------------------------------------------------------
 
 def test_generate(ctx):
     seen = []
@@ -162,16 +101,6 @@ def test_submit_watch_jobs(ctx):
     assert job_id not in [j.job_id for j in ctx.client.jobs("cancelled")]
 
 
-async def expect_async(error, awaitable):
-    """expect() for a coroutine."""
-    try:
-        result = await awaitable
-    except error as e:
-        assert e.code == error.code, e
-        return e
-    raise AssertionError(f"expected {error.__name__}, got {result!r}")
-
-
 def test_aio(ctx):
     async def run():
         async with meshd.aio.Client(ctx.address, timeout=TIMEOUT_S) as client:
@@ -187,68 +116,6 @@ def test_aio(ctx):
             e = await expect_async(meshd.InvalidArgument, client.generate(ring(h0=-1)))
             assert e.field == "h0", e.field
     asyncio.run(run())
-
-
-def test_invalid_argument(ctx):
-    bad = meshd.request(meshd.circle(1) - meshd.circle(-0.5), h0=0.1, backend="cpu")
-    for call in (lambda: ctx.client.generate(bad), lambda: ctx.client.submit(bad)):
-        e = expect(meshd.InvalidArgument, call)
-        assert e.field == "geometry.difference.subtract[0].circle.radius", e.field
-        assert "> 0" in e.reason and e.field not in e.reason, e.reason
-    e = expect(meshd.InvalidArgument, lambda: ctx.client.generate(ring(h0=-1)))
-    assert e.field == "h0", e
-
-
-def test_not_found(ctx):
-    for call in (lambda: list(ctx.client.watch("no-such-job")),
-                 lambda: ctx.client.cancel("no-such-job"), lambda: ctx.client.job("no-such-job")):
-        e = expect(meshd.NotFound, call)
-        assert e.field == "job_id" and "no-such-job" in e.reason, e
-
-
-def test_unavailable(ctx):
-    with socket.socket() as s:  # a port nothing listens on
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    with meshd.Client(f"127.0.0.1:{port}", timeout=TIMEOUT_S) as client:
-        expect(meshd.Unavailable, lambda: client.generate(ring()))
-        expect(meshd.Unavailable, lambda: client.jobs())
-
-
-def test_unauthenticated(ctx):
-    token_file = os.path.join(ctx.tmp, "token")
-    with open(token_file, "w") as f:
-        f.write("package-test-token\n")
-    with MeshdChild(ctx.binary, "--token-file", token_file) as server:
-        for token in ("", "wrong"):
-            with meshd.Client(server.address, token=token, timeout=TIMEOUT_S) as client:
-                expect(meshd.Unauthenticated, lambda: client.jobs())
-                expect(meshd.Unauthenticated, lambda: client.generate(ring()))
-        with meshd.Client(server.address, token="package-test-token", timeout=TIMEOUT_S) as c:
-            check_ring(c.generate(ring()))
-
-
-def test_cancelled(ctx):
-    job_id = ctx.client.submit(BIG)
-    assert ctx.client.cancel(job_id).job_id == job_id
-    e = expect(meshd.Cancelled, lambda: list(ctx.client.watch(job_id)))
-    info = wait_for_state(ctx.client, job_id, ("cancelled", "failed", "succeeded"))
-    assert info.state == "cancelled" and isinstance(info.error, meshd.Cancelled), info
-    assert job_id in [j.job_id for j in ctx.client.jobs("cancelled")], e
-    # Leaving a Generate stream early cancels its job too.
-    stream = ctx.client.stream(BIG)
-    started = next(e for e in stream if isinstance(e, meshd.Started))
-    stream.close()
-    info = wait_for_state(ctx.client, started.job_id, ("cancelled", "failed", "succeeded"))
-    assert info.state == "cancelled", info
-
-
-def test_deadline_exceeded(ctx):
-    e = expect(meshd.DeadlineExceeded,
-               lambda: ctx.client.generate(BIG, timeout=SHORT_DEADLINE_S))
-    print(f"  {e}")
-    # The server cancels a Generate job whose deadline passed; it stays up and meshes again.
-    check_ring(ctx.client.generate(ring()))
 
 
 def test_optional_reporters(ctx):
@@ -296,25 +163,6 @@ def test_plate_example(ctx):
     assert not os.path.exists(out + ".bad"), "a failed request wrote its output"
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--meshd", required=True)
-    parser.add_argument("--tmp", required=True)
-    parser.add_argument("--plate", required=True, help="examples/python/plate.py")
-    args = parser.parse_args()
-    with MeshdChild(args.meshd, "--cpu-workers", "2", "--cpu-threads", "1") as server:
-        ctx = argparse.Namespace(binary=args.meshd, tmp=args.tmp, address=server.address,
-                                 plate=args.plate,
-                                 client=meshd.Client(server.address, timeout=TIMEOUT_S))
-        tests = [test_generate, test_to_meshio, test_snapshots, test_submit_watch_jobs, test_aio,
-                 test_invalid_argument, test_not_found, test_unavailable, test_unauthenticated,
-                 test_optional_reporters, test_plate_example, test_cancelled,
-                 test_deadline_exceeded]
-        status = run_checks(tests, ctx,
-                            on_failure=lambda: print(f"  meshd's log:\n  {server.log()}"))
-        ctx.client.close()
-        return status
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main([test_generate, test_to_meshio, test_snapshots, test_submit_watch_jobs,
+                   test_aio, test_optional_reporters, test_plate_example], "--plate"))

@@ -9,6 +9,7 @@ with `pip install --no-build-isolation --no-deps --no-index` (offline, Debian's 
 stubs generated from proto/ by the build), then runs with the venv's interpreter:
   builder_checks.py  geometry builders, requests, error parsing and the event decoder, offline
   client_checks.py   the sync and asyncio clients against `BIN --backend cpu`
+  failure_checks.py  each kind of failure, the bearer token and TLS, against the same
 
 Exit status: 0 when all pass, 1 on a failure, 77 (ctest's skip) when this interpreter lacks
 grpcio, protobuf, numpy or venv/ensurepip, or protoc and grpc_python_plugin are missing.
@@ -86,14 +87,16 @@ def main():
         return 1
 
     failures = 0
-    for script, extra in (("builder_checks.py", ["--examples",
-                                                 os.path.join(args.source_dir, "examples")]),
-                          ("client_checks.py", ["--meshd", args.meshd, "--tmp", work, "--plate",
-                                                os.path.join(args.source_dir, "examples",
-                                                             "python", "plate.py")])):
+    server = ["--meshd", args.meshd, "--tmp", work]
+    plate = os.path.join(args.source_dir, "examples", "python", "plate.py")
+    scripts = (("builder_checks.py", ["--examples", os.path.join(args.source_dir, "examples")]),
+               ("client_checks.py", server + ["--plate", plate]),
+               ("failure_checks.py", server))
+    for script, extra in scripts:
         r = subprocess.run([python, os.path.join(HERE, script), *extra], env=env, timeout=240)
         failures += r.returncode != 0
-    print(f"{failures} of 2 check scripts failed" if failures else "both check scripts passed")
+    print(f"{failures} of {len(scripts)} check scripts failed" if failures
+          else f"all {len(scripts)} check scripts passed")
     return 1 if failures else 0
 
 
