@@ -28,7 +28,7 @@ __global__ void flag_grid(InitialGrid grid, DeviceSpan<const double> size,
   if (k >= flag.size) return;
   const double h = size[k];
   const double h_min = __longlong_as_double(static_cast<long long>(*h_min_bits));
-  bool keep = h > 0.0 && keep_by_size(seed, k, h, h_min);
+  bool keep = h > 0.0 && keep_by_size(seed, grid, k, h, h_min);
   if (keep) {
     const Vec2 q = initial_grid_point(grid, k);
     for (int64_t f = 0; f < fixed.size && keep; ++f) keep = norm(q - fixed[f]) >= 0.5 * grid.h0 * h;

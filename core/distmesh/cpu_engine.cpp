@@ -43,7 +43,7 @@ int64_t CpuEngine::initialize(const CompiledProblem& problem) {
   p_.assign(problem.fixed_points.begin(), problem.fixed_points.end());
   nfix_ = static_cast<int64_t>(p_.size());
   for (int64_t k = 0; k < total; ++k) {
-    if (size[k] <= 0.0 || !keep_by_size(problem.seed, k, size[k], h_min)) continue;
+    if (size[k] <= 0.0 || !keep_by_size(problem.seed, grid, k, size[k], h_min)) continue;
     const Vec2 q = initial_grid_point(grid, k);
     // A grid point on top of a fixed node would only be pushed away again.
     bool near_fixed = false;

@@ -111,35 +111,41 @@ TEST(InitialPoints, FixedPointsComeFirstAndPushAwayGridPoints) {
 
 // ---- Size-based rejection -----------------------------------------------------------------------
 
-TEST(SizeRejection, HashIsAPureFunctionOfSeedAndIndex) {
+TEST(SizeRejection, ThresholdsArePureAndEvenlySpread) {
+  const InitialGrid g = make_initial_grid(Box{{0, 0}, {100, 100}}, 0.05);  // 2,001 per row
   for (uint64_t seed : {0ull, 1ull, 12345ull}) {
     for (int64_t k : {0ll, 1ll, 77ll, 1ll << 40}) {
-      EXPECT_EQ(hash_uniform(seed, k), hash_uniform(seed, k));
-      EXPECT_EQ(keep_by_size(seed, k, 1.7, 1.0), keep_by_size(seed, k, 1.7, 1.0));
+      EXPECT_EQ(dither_threshold(seed, g, k), dither_threshold(seed, g, k));
+      EXPECT_EQ(keep_by_size(seed, g, k, 1.7, 1.0), keep_by_size(seed, g, k, 1.7, 1.0));
     }
   }
-  // Uniform on [0, 1): mean, a quantile, and seeds that give different streams.
-  constexpr int kN = 100000;
-  double sum = 0;
-  int below_quarter = 0, same = 0;
-  for (int k = 0; k < kN; ++k) {
-    const double u = hash_uniform(7, k);
-    ASSERT_GE(u, 0.0);
-    ASSERT_LT(u, 1.0);
-    sum += u;
-    below_quarter += u < 0.25;
-    same += hash_uniform(8, k) == u;
+  // In [0, 1), and even in every 8 x 8 block of grid points: 16 +- 2 of 64 under a quarter (an
+  // independent draw per point gives 16 +- 3.5 as one standard deviation). Seeds differ.
+  int same = 0;
+  for (int64_t row = 0; row < 400; row += 8) {
+    for (int64_t column = 0; column < 400; column += 8) {
+      int below_quarter = 0;
+      for (int64_t j = row; j < row + 8; ++j) {
+        for (int64_t i = column; i < column + 8; ++i) {
+          const double t = dither_threshold(7, g, j * g.nx + i);
+          ASSERT_GE(t, 0.0);
+          ASSERT_LT(t, 1.0);
+          below_quarter += t < 0.25;
+          same += dither_threshold(8, g, j * g.nx + i) == t;
+        }
+      }
+      EXPECT_NEAR(below_quarter, 16, 2) << "block at column " << column << ", row " << row;
+    }
   }
-  EXPECT_NEAR(sum / kN, 0.5, 0.005);        // sd 0.29 / sqrt(1e5) ~ 0.001
-  EXPECT_NEAR(below_quarter, kN / 4, 700);  // sd ~ 137
   EXPECT_LT(same, 5);
   // Where the size is the smallest, every point is kept.
-  for (int k = 0; k < 1000; ++k) EXPECT_TRUE(keep_by_size(3, k, 0.4, 0.4));
-  // keep_by_size keeps exactly when the draw is under (h_min / h)^2.
-  for (int k = 0; k < 1000; ++k) EXPECT_EQ(keep_by_size(3, k, 2.0, 1.0), hash_uniform(3, k) < 0.25);
+  for (int k = 0; k < 1000; ++k) EXPECT_TRUE(keep_by_size(3, g, k, 0.4, 0.4));
+  // keep_by_size keeps exactly when the threshold is under (h_min / h)^2.
+  for (int k = 0; k < 1000; ++k)
+    EXPECT_EQ(keep_by_size(3, g, k, 2.0, 1.0), dither_threshold(3, g, k) < 0.25);
 }
 
-// The grid points G5 keeps for `seed`, computed from the formulas: fd < geps, then the draw.
+// The grid points G5 keeps for `seed`, computed from the formulas: fd < geps, then the dither.
 std::vector<Vec2> expected_g5_points(const CompiledProblem& c, uint64_t seed, double* mean_kept) {
   const InitialGrid g = make_initial_grid(c.bbox, c.h0);
   const double geps = c.params.geps * c.h0;
@@ -158,7 +164,7 @@ std::vector<Vec2> expected_g5_points(const CompiledProblem& c, uint64_t seed, do
   for (size_t i = 0; i < inside.size(); ++i) {
     const double ratio = h_min / size[i];
     mean += ratio * ratio;
-    if (!(hash_uniform(seed, static_cast<uint64_t>(inside[i])) < ratio * ratio)) continue;
+    if (!(dither_threshold(seed, g, inside[i]) < ratio * ratio)) continue;
     const Vec2 p = initial_grid_point(g, inside[i]);
     bool near_fixed = false;
     for (Vec2 f : c.fixed_points) near_fixed = near_fixed || norm(p - f) < 0.5 * c.h0 * size[i];
@@ -178,10 +184,11 @@ TEST(SizeRejection, GradedCaseKeepsTheExpectedPointsAndFraction) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) ASSERT_TRUE(got[i] == want[i]) << i;
 
-  // The kept fraction is sum (h_min / h)^2 over the inside points, up to binomial noise. For
-  // h = min(4r - 1, 2) that is well under a half: far fewer points than the uniform grid.
+  // The kept fraction is sum (h_min / h)^2 over the inside points, within 1% (the dither's
+  // error; an independent draw per point is off by sqrt(n)). For h = min(4r - 1, 2) that is well
+  // under a half: far fewer points than the uniform grid.
   const double kept = static_cast<double>(got.size() - c.fixed_points.size());
-  EXPECT_NEAR(kept, mean_kept, 4 * std::sqrt(mean_kept));
+  EXPECT_NEAR(kept, mean_kept, 0.01 * mean_kept);
   EXPECT_GT(mean_kept, 1000);
 
   // A point at size h survives with probability (h_min / h)^2: near the hole (h ~ 1) almost all

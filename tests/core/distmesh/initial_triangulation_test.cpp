@@ -35,7 +35,7 @@ std::vector<uint8_t> kept_flags(const CompiledProblem& c, const InitialGrid& g) 
   }
   std::vector<uint8_t> kept(total, 0);
   for (int64_t k = 0; k < total; ++k) {
-    if (size[k] <= 0.0 || !keep_by_size(c.seed, k, size[k], h_min)) continue;
+    if (size[k] <= 0.0 || !keep_by_size(c.seed, g, k, size[k], h_min)) continue;
     const Vec2 q = initial_grid_point(g, k);
     bool near_fixed = false;
     for (const Vec2 f : c.fixed_points) near_fixed |= norm(q - f) < 0.5 * c.h0 * size[k];
