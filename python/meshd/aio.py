@@ -6,7 +6,9 @@
         async for event in client.watch(job):
             ...
 
-Create it inside the event loop that uses it (grpc.aio binds a channel to its loop).
+Create it inside the event loop that uses it (grpc.aio binds a channel to its loop). To leave a
+stream early, close it (`await events.aclose()`, or `async with contextlib.aclosing(...)`): an
+async generator left open keeps its call, and a Generate call its job, until it is collected.
 """
 
 import grpc

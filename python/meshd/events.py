@@ -13,6 +13,7 @@ import numpy as np
 
 from meshd.errors import BadResult
 from meshd.mesh import Mesh
+from meshd.request import BACKEND_NAMES
 from meshd.v1 import mesh_pb2
 
 
@@ -71,15 +72,14 @@ class EventDecoder:
 
     def feed(self, event):
         """The typed event for a meshd.v1.MeshEvent, or None for a result chunk."""
-        from meshd.request import BACKENDS
         self.job_id = event.job_id or self.job_id
         kind = event.WhichOneof("event")
         if kind == "queued":
             return Queued(event.job_id, event.queued.position)
         if kind == "started":
             s = event.started
-            names = {v: k for k, v in BACKENDS.items()}
-            return Started(event.job_id, names.get(s.backend, ""), s.device, s.queue_wait_s)
+            return Started(event.job_id, BACKEND_NAMES.get(s.backend, ""), s.device,
+                           s.queue_wait_s)
         if kind == "progress":
             p = event.progress
             return Progress(event.job_id, p.iteration, p.max_move, p.retriangulations, p.flips,

@@ -4,6 +4,7 @@ from dataclasses import dataclass
 
 from meshd.errors import error_code_from_int, error_for_status
 from meshd.mesh import Quality, RunStats
+from meshd.request import BACKEND_NAMES
 from meshd.v1 import service_pb2
 
 STATES = {service_pb2.JOB_STATE_UNSPECIFIED: "unspecified",
@@ -38,15 +39,13 @@ class JobInfo:
 
     @classmethod
     def from_proto(cls, info):
-        from meshd.request import BACKENDS
-        backends = {v: k for k, v in BACKENDS.items()}
         error = None
         if info.error_code:
             error = error_for_status(error_code_from_int(info.error_code), info.error_message)
         done = info.done if info.HasField("done") else None
         return cls(job_id=info.job_id, state=STATES.get(info.state, "unspecified"),
                    label=info.label, priority=info.priority,
-                   queue_position=info.queue_position, backend=backends.get(info.backend, ""),
+                   queue_position=info.queue_position, backend=BACKEND_NAMES.get(info.backend, ""),
                    device=info.device, iteration=info.iteration, nodes=info.nodes,
                    queue_wait_s=info.queue_wait_s, run_s=info.run_s,
                    submitted_at=info.submitted_at, error=error,

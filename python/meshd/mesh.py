@@ -15,6 +15,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from meshd.request import BACKEND_NAMES
+
 DOMAIN_PHYSICAL_TAG = 1
 DOMAIN_GROUP_NAME = "domain"
 
@@ -76,8 +78,6 @@ class Mesh:
     @classmethod
     def from_proto(cls, data, done=None, job_id=""):
         """A Mesh from a meshd.v1.MeshData and, when given, the job's Done event."""
-        from meshd.request import BACKENDS
-        backend_names = {v: k for k, v in BACKENDS.items()}
         return cls(
             points=np.array(data.points, dtype=np.float64).reshape(-1, 2),
             triangles=np.array(data.triangles, dtype=np.int32).reshape(-1, 3),
@@ -87,7 +87,7 @@ class Mesh:
             quality=Quality.from_proto(done.quality) if done is not None else None,
             stats=RunStats.from_proto(done.stats) if done is not None else None,
             job_id=job_id,
-            backend=backend_names.get(done.backend, "") if done is not None else "",
+            backend=BACKEND_NAMES.get(done.backend, "") if done is not None else "",
             device=done.device if done is not None else "")
 
     @property

@@ -12,6 +12,7 @@ from meshd.v1 import geometry_pb2, request_pb2
 BACKENDS = {"auto": request_pb2.JobOptions.BACKEND_AUTO,
             "gpu": request_pb2.JobOptions.BACKEND_GPU,
             "cpu": request_pb2.JobOptions.BACKEND_CPU}
+BACKEND_NAMES = {value: name for name, value in BACKENDS.items()}
 
 # DistMeshParams' fields, taken from the message so that a new one needs no change here.
 PARAMS = tuple(f.name for f in request_pb2.DistMeshParams.DESCRIPTOR.fields)
