@@ -41,7 +41,7 @@ class Shape:
 
     @property
     def kind(self):
-        """"circle", "union", "translate", ...: which of the proto's kinds this node is."""
+        """Which of the proto's kinds this node is: "circle", "union", "translate", ..."""
         return self._proto.WhichOneof("kind")
 
     @property

@@ -64,6 +64,8 @@ class RunStats:
 
 @dataclass(frozen=True, eq=False)
 class Mesh:
+    """A job's mesh: the arrays of the module's docstring, the job's quality and run statistics
+    (None for a mesh built from MeshData alone), and where it ran."""
     points: np.ndarray
     triangles: np.ndarray
     boundary_edges: np.ndarray
