@@ -261,11 +261,15 @@ struct GpuEngine::Impl {
   // for the next full triangulation; the nodes may have moved since those triangles were made,
   // so the flips check orientations first.
   void prepare_completion(Triangulation partial) {
-    std::vector<Vec2> host(n);
-    p.download(host.data(), stream);
-    sync();
-    const Triangulation t =
-        complete_triangulation(host, std::move(partial), static_cast<int32_t>(nfix));
+    use_completion(
+        complete_triangulation(download_points(), std::move(partial), static_cast<int32_t>(nfix)));
+  }
+  // The same for triangles whose neighbours are not known (a refined level's, refine.h).
+  void prepare_completion(const std::vector<std::array<int32_t, 3>>& partial) {
+    use_completion(complete_triangulation(download_points(), partial, static_cast<int32_t>(nfix)));
+  }
+  // Uploads a completion for the next full triangulation, or notes that it failed.
+  void use_completion(const Triangulation& t) {
     if (t.triangles.empty()) {
       completion_failed = true;  // reported as a fallback by the next retriangulate
       return;
@@ -377,11 +381,15 @@ struct GpuEngine::Impl {
 
   // ---- Step 3 ----
 
-  void full_triangulation() {
+  std::vector<Vec2> download_points() {
     std::vector<Vec2> host(n);
     p.download(host.data(), stream);
     sync();
-    const Triangulation dt = delaunay_triangulate(host);
+    return host;
+  }
+
+  void full_triangulation() {
+    const Triangulation dt = delaunay_triangulate(download_points());
     static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
     tris.upload(reinterpret_cast<const Tri*>(dt.triangles.data()), dt.triangles.size(), stream);
     nbrs.upload(reinterpret_cast<const Tri*>(dt.neighbors.data()), dt.neighbors.size(), stream);
@@ -695,6 +703,13 @@ int64_t GpuEngine::load_points(const CompiledProblem& problem, const std::vector
   s.p.upload(points.data(), points.size(), s.stream);
   s.reset_node_state();
   return s.n;
+}
+
+void GpuEngine::offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) {
+  if (triangles.empty()) return;
+  Impl& s = *impl_;
+  s.use_device();
+  s.prepare_completion(triangles);
 }
 
 TopologyStats GpuEngine::retriangulate(bool full) {

@@ -62,6 +62,9 @@ class GpuEngine final : public Engine {
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
+  // Completes `triangles` on the host (CGAL on the gaps' points alone) and flips the result on
+  // the device at the next full triangulation.
+  void offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) override;
   TopologyStats retriangulate(bool full) override;
   int64_t remove_crowded_points() override;
   StepResult move_points() override;

@@ -63,8 +63,9 @@ class Loop {
       } else {
         engine_.read_points(points_);
         engine_.read_triangles(triangles_);
-        refine_by_midpoints(*current_, points_, triangles_);
+        const auto refined = refine_by_midpoints(*current_, points_, triangles_);
         engine_.load_points(*current_, points_);
+        engine_.offer_triangulation(refined);
       }
       s.t_initial += seconds_since(t);
       triangulate(true);

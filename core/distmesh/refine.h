@@ -16,8 +16,12 @@
 namespace meshd {
 
 // Appends the midpoint of every edge of `triangles` to `points` (#N by 2, fixed nodes first and
-// kept first). Midpoints of boundary edges are projected onto the boundary of `problem`.
-void refine_by_midpoints(const CompiledProblem& problem, std::vector<Vec2>& points,
-                         const std::vector<std::array<int32_t, 3>>& triangles);
+// kept first). Midpoints of boundary edges are projected onto the boundary of `problem`. Returns
+// the triangles split in four (#4M by 3, counter-clockwise where `triangles` are): a
+// triangulation of the new points where the projections moved no midpoint across a neighbour,
+// which the engine completes and flips instead of triangulating from scratch.
+std::vector<std::array<int32_t, 3>> refine_by_midpoints(
+    const CompiledProblem& problem, std::vector<Vec2>& points,
+    const std::vector<std::array<int32_t, 3>>& triangles);
 
 }  // namespace meshd

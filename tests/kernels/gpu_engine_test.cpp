@@ -17,6 +17,7 @@
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
+#include "core/distmesh/refine.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
@@ -236,6 +237,43 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
   }
   EXPECT_GT(repairs, 10);
   EXPECT_GT(total_flips, 0) << "the test never exercised a flip";
+}
+
+// A multilevel step: a coarse mesh relaxed at 2 h0 and split in four (refine.h). The device
+// completes the split triangles and flips them, with no rebuild, to the triangulation that CGAL
+// builds from scratch on the same points.
+TEST_P(GpuAgreement, RefinedLevelFlipsToTheSameTriangulation) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem fine = compiled(GetParam(), 8000);
+  CompiledProblem coarse = fine;
+  coarse.h0 = 2 * fine.h0;
+  ThreadPool pool;
+  CpuEngine relax(pool);
+  generate_mesh(coarse, relax, nullptr, nullptr);
+  std::vector<Vec2> pts;
+  Triangles coarse_triangles;
+  relax.read_points(pts);
+  relax.read_triangles(coarse_triangles);
+  const Triangles refined = refine_by_midpoints(fine, pts, coarse_triangles);
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  cpu.load_points(fine, pts);
+  gpu.load_points(fine, pts);
+  gpu.offer_triangulation(refined);
+  cpu.retriangulate(true);
+  const TopologyStats tg = gpu.retriangulate(true);
+  EXPECT_FALSE(tg.repair_failed) << "the device rebuilt instead of flipping";
+  EXPECT_GT(tg.flips, 0);
+  Triangles t_cpu, t_gpu;
+  cpu.read_triangles(t_cpu);
+  gpu.read_triangles(t_gpu);
+  const auto sorted = [](Triangles t) {
+    for (auto& tri : t)
+      std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  EXPECT_EQ(sorted(t_gpu), sorted(t_cpu));
 }
 
 TEST_P(GpuAgreement, DensityControlRemovesTheSamePoints) {
