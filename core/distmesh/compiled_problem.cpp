@@ -68,7 +68,8 @@ CompiledProblem compile_problem(const Problem& problem) {
     t.h_max /= floor;
   }
   out.params = problem.params;
-  if (out.params.fscale_auto) out.params.fscale = out.size.uniform() ? 1.2 : 1.1;  // params.h
+  if (out.params.fscale_auto)
+    out.params.fscale = out.size.uniform() ? kUniformFscale : kGradedFscale;
   out.seed = problem.seed;
 
   const Box derived = program_bounds(out.geometry);

@@ -301,7 +301,7 @@ TEST_P(GpuAgreement, DensityControlRemovesTheSamePoints) {
 TEST_P(GpuAgreement, CleanupRemovesTheSameSlivers) {
   SKIP_WITHOUT_GPU();
   CompiledProblem c = compiled(GetParam(), 2000);
-  c.params.fscale = 1.2;  // distmesh2d.m's push
+  c.params.fscale = kUniformFscale;  // distmesh2d.m's push
   ThreadPool pool;
   CpuEngine relax(pool);
   relax.load_points(c, random_points(c, 2000, 1));
