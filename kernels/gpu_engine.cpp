@@ -204,13 +204,13 @@ struct GpuEngine::Impl {
     sync();  // fixed_boundary is a stack buffer
   }
 
-  // Keeps the nodes with flags[i] = 1, in order. Returns how many went; with none, leaves the
-  // nodes and their triangulation as they are.
-  int64_t compact_nodes() {
+  // Keeps the nodes with flags[i] = 1, in order. Returns how many went; with none, or more than
+  // max_removed, leaves the nodes and their triangulation as they are (and returns 0).
+  int64_t compact_nodes(int64_t max_removed) {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
     const int64_t kept = last_total(position, flags);
-    if (kept == n) return 0;
+    if (kept == n || n - kept > max_removed) return 0;
     // The triangles untouched by the removal survive, renumbered, with their links: the next
     // full triangulation completes them (complete_triangulation.h) instead of starting over.
     Triangulation survivors;
@@ -765,7 +765,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   return stats;
 }
 
-int64_t GpuEngine::remove_crowded_points() {
+int64_t GpuEngine::remove_crowded_points(int64_t max_removed) {
   Impl& s = *impl_;
   s.use_device();
   s.measure_bars(true);
@@ -773,10 +773,10 @@ int64_t GpuEngine::remove_crowded_points() {
   MESHD_CUDA_CHECK(cudaMemsetAsync(s.flags.data(), 1, s.n, s.stream));
   gpu::launch_mark_crowded(s.bars.span(), s.length.span(), s.size.span(), s.scale.data(), s.nfix,
                            s.flags.span(), s.stream);
-  return s.compact_nodes();
+  return s.compact_nodes(max_removed);
 }
 
-int64_t GpuEngine::remove_boundary_slivers(const CompiledProblem& problem) {
+int64_t GpuEngine::remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed) {
   Impl& s = *impl_;
   s.use_device();
   // Found where the points and triangles are: reading a million of each to the host and back
@@ -786,7 +786,7 @@ int64_t GpuEngine::remove_boundary_slivers(const CompiledProblem& problem) {
   gpu::launch_mark_boundary_slivers(s.p.span(), s.tris.span(), s.keep.span(), s.fd,
                                     problem.params.geps * problem.h0, s.nfix, s.flags.span(),
                                     s.stream);
-  return s.compact_nodes();
+  return s.compact_nodes(max_removed);
 }
 
 void GpuEngine::remove_points(const std::vector<int32_t>& indices) {
@@ -796,7 +796,7 @@ void GpuEngine::remove_points(const std::vector<int32_t>& indices) {
   for (int32_t i : indices)
     if (i >= s.nfix && i < s.n) keep[i] = 0;
   s.flags.upload(keep.data(), keep.size(), s.stream);
-  s.compact_nodes();
+  s.compact_nodes(kRemoveAny);
 }
 
 StepResult GpuEngine::move_points() {
@@ -863,7 +863,7 @@ void GpuEngine::warm_up() {
   retriangulate(true);
   for (int i = 0; i < 3; ++i) move_points();
   retriangulate(false);
-  remove_crowded_points();
+  remove_crowded_points(kRemoveAny);
 }
 
 }  // namespace meshd

@@ -66,13 +66,13 @@ class GpuEngine final : public Engine {
   // the device at the next full triangulation.
   void offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) override;
   TopologyStats retriangulate(bool full) override;
-  int64_t remove_crowded_points() override;
+  int64_t remove_crowded_points(int64_t max_removed) override;
   StepResult move_points() override;
   void move_points_until(const StepRule& rule, int first_iteration, int limit,
                          std::vector<StepResult>& steps) override;
   int preferred_batch() const override;
   void remove_points(const std::vector<int32_t>& indices) override;
-  int64_t remove_boundary_slivers(const CompiledProblem& problem) override;
+  int64_t remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed) override;
   int64_t node_count() const override;
   void read_points(std::vector<Vec2>& points) override;
   void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override;

@@ -31,12 +31,13 @@ std::vector<int32_t> cleanup_victims(const CompiledProblem& problem,
   return victims;
 }
 
-int64_t Engine::remove_boundary_slivers(const CompiledProblem& problem) {
+int64_t Engine::remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed) {
   std::vector<Vec2> points;
   std::vector<std::array<int32_t, 3>> triangles;
   read_points(points);
   read_triangles(triangles);
   const std::vector<int32_t> victims = cleanup_victims(problem, points, triangles);
+  if (static_cast<int64_t>(victims.size()) > max_removed) return 0;
   if (!victims.empty()) remove_points(victims);
   return static_cast<int64_t>(victims.size());
 }

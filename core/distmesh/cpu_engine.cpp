@@ -157,7 +157,7 @@ double CpuEngine::measure_bars() {
 
 // ---- Step 6: density control -------------------------------------------------------------------
 
-int64_t CpuEngine::remove_crowded_points() {
+int64_t CpuEngine::remove_crowded_points(int64_t max_removed) {
   const double scale = measure_bars();
   std::vector<char> remove(p_.size(), 0);
   int64_t count = 0;
@@ -170,6 +170,7 @@ int64_t CpuEngine::remove_crowded_points() {
       }
     }
   }
+  if (count > max_removed) return 0;
   if (count > 0) keep_points(remove);
   return count;
 }

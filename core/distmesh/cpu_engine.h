@@ -26,7 +26,7 @@ class CpuEngine final : public Engine {
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
   TopologyStats retriangulate(bool full) override;
-  int64_t remove_crowded_points() override;
+  int64_t remove_crowded_points(int64_t max_removed) override;
   StepResult move_points() override;
   void remove_points(const std::vector<int32_t>& indices) override;
   int64_t node_count() const override { return static_cast<int64_t>(p_.size()); }

@@ -88,7 +88,7 @@ class Loop {
         const int budget = std::min(kCleanupIterations, problem_.params.max_iterations -
                                                             s.iterations - s.cleanup_iterations);
         if (budget <= 0) break;
-        const int64_t removed = engine_.remove_boundary_slivers(problem_);
+        const int64_t removed = engine_.remove_boundary_slivers(problem_, max_removed());
         if (removed == 0) break;
         s.cleanup_removed += removed;
         triangulate(true);
@@ -122,10 +122,21 @@ class Loop {
 
  private:
   static constexpr int kCleanupRounds = 3;
+  // A density check or a clean-up round that would remove more than this share of the free nodes
+  // at once is not meeting a local excess: the L0 scale is skewed (in a domain a few edges thick
+  // long sliver bars inflate it; so does an fscale near the top of its range), and the removal
+  // would empty the mesh (tests/fuzz/FINDINGS.md). It is skipped.
+  static constexpr double kMaxRemovedShare = 0.25;
   static constexpr int kCleanupIterations = 200;
   // The termination test's constants (step_rule.cuh).
   static constexpr double kMaxMoveFactor = 10.0;
   static constexpr int kMinIterations = 10;
+
+  int64_t max_removed() const {
+    const auto free_nodes =
+        engine_.node_count() - static_cast<int64_t>(current_->fixed_points.size());
+    return static_cast<int64_t>(kMaxRemovedShare * static_cast<double>(free_nodes));
+  }
 
   void triangulate(bool full) {
     const auto t = Clock::now();
@@ -164,7 +175,7 @@ class Loop {
       // 6. Density control.
       if (interval > 0 && it % interval == 0) {
         const auto t = Clock::now();
-        const int64_t removed = engine_.remove_crowded_points();
+        const int64_t removed = engine_.remove_crowded_points(max_removed());
         stats_.t_density += seconds_since(t);
         if (removed > 0) {
           stats_.density_removed += removed;

@@ -37,6 +37,9 @@ struct TopologyStats {
   int64_t dropped = 0;         // turned-over boundary slivers a repair removed
 };
 
+// max_removed for a removal that may take any number of nodes.
+constexpr int64_t kRemoveAny = INT64_MAX;
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -59,9 +62,10 @@ class Engine {
   // Step 3: Delaunay triangulation (from scratch when `full`, otherwise the engine may repair
   // the previous one), the centroid filter and the bar list.
   virtual TopologyStats retriangulate(bool full) = 0;
-  // Steps 4 and 6: removes both ends (unless fixed) of every bar with L0 > 2 L. Returns how many
-  // points went; the caller must retriangulate in full when any did.
-  virtual int64_t remove_crowded_points() = 0;
+  // Steps 4 and 6: removes both ends (unless fixed) of every bar with L0 > 2 L, or nothing when
+  // more than `max_removed` would go. Returns how many points went; the caller must
+  // retriangulate in full when any did.
+  virtual int64_t remove_crowded_points(int64_t max_removed) = 0;
   // Steps 4, 5, 7, 8: bar forces, Euler step, projection onto the boundary; also measures
   // step 3's test for the next iteration (the drift since the last triangulation).
   virtual StepResult move_points() = 0;
@@ -80,7 +84,8 @@ class Engine {
   // The boundary clean-up's removal (cleanup.h) over the kept triangles. Returns how many nodes
   // went; the caller retriangulates in full when any did. By default on the host, from copies of
   // the points and triangles (cleanup.cpp); the GPU engine finds them where they are.
-  virtual int64_t remove_boundary_slivers(const CompiledProblem& problem);
+  // Nothing goes when more than `max_removed` would.
+  virtual int64_t remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed);
 
   virtual int64_t node_count() const = 0;
   virtual void read_points(std::vector<Vec2>& points) = 0;

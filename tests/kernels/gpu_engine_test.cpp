@@ -285,7 +285,8 @@ TEST_P(GpuAgreement, DensityControlRemovesTheSamePoints) {
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
   load_and_triangulate(c, pts, {&cpu, &gpu});
-  const int64_t rc = cpu.remove_crowded_points(), rg = gpu.remove_crowded_points();
+  const int64_t rc = cpu.remove_crowded_points(kRemoveAny),
+                rg = gpu.remove_crowded_points(kRemoveAny);
   EXPECT_GT(rc, 0);
   EXPECT_EQ(rc, rg);
   std::vector<Vec2> a, b;
@@ -315,7 +316,8 @@ TEST_P(GpuAgreement, CleanupRemovesTheSameSlivers) {
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
   load_and_triangulate(c, pts, {&cpu, &gpu});
-  const int64_t rc = cpu.remove_boundary_slivers(c), rg = gpu.remove_boundary_slivers(c);
+  const int64_t rc = cpu.remove_boundary_slivers(c, kRemoveAny),
+                rg = gpu.remove_boundary_slivers(c, kRemoveAny);
   EXPECT_EQ(rc, rg);
   EXPECT_GT(rc, 0) << "the test no longer exercises a removal";
   std::vector<Vec2> a, b;

@@ -70,10 +70,10 @@ class CompletionProbe final : public Engine {
     mirror(full || !have_, p);
     return s;
   }
-  int64_t remove_crowded_points() override {
+  int64_t remove_crowded_points(int64_t max_removed) override {
     std::vector<Vec2> before;
     cpu_.read_points(before);
-    const int64_t removed = cpu_.remove_crowded_points();
+    const int64_t removed = cpu_.remove_crowded_points(max_removed);
     if (removed > 0) survivors(before);
     return removed;
   }

@@ -339,7 +339,7 @@ TEST(CpuEngine, RemoveCrowdedPointsRemovesEndsOfShortBarsButNeverFixedNodes) {
   const int64_t removed = static_cast<int64_t>(s.points.size() - want.size());
   ASSERT_GT(removed, 0);
 
-  EXPECT_EQ(engine.remove_crowded_points(), removed);
+  EXPECT_EQ(engine.remove_crowded_points(kRemoveAny), removed);
   std::vector<Vec2> got;
   engine.read_points(got);
   ASSERT_EQ(got.size(), want.size());
@@ -386,7 +386,7 @@ std::pair<std::vector<Vec2>, std::vector<double>> engine_run(const CompiledProbl
     if (r.max_drift > c.params.ttol)
       moves.push_back(static_cast<double>(engine.retriangulate(false).flips));
   }
-  moves.push_back(static_cast<double>(engine.remove_crowded_points()));
+  moves.push_back(static_cast<double>(engine.remove_crowded_points(kRemoveAny)));
   std::vector<Vec2> p;
   engine.read_points(p);
   return {p, moves};

@@ -21,11 +21,13 @@ class ForwardingEngine : public Engine {
     return cpu_.load_points(p, pts);
   }
   TopologyStats retriangulate(bool full) override { return cpu_.retriangulate(full); }
-  int64_t remove_crowded_points() override { return cpu_.remove_crowded_points(); }
+  int64_t remove_crowded_points(int64_t max_removed) override {
+    return cpu_.remove_crowded_points(max_removed);
+  }
   StepResult move_points() override { return cpu_.move_points(); }
   void remove_points(const std::vector<int32_t>& indices) override { cpu_.remove_points(indices); }
-  int64_t remove_boundary_slivers(const CompiledProblem& p) override {
-    return cpu_.remove_boundary_slivers(p);
+  int64_t remove_boundary_slivers(const CompiledProblem& p, int64_t max_removed) override {
+    return cpu_.remove_boundary_slivers(p, max_removed);
   }
   int64_t node_count() const override { return cpu_.node_count(); }
   void read_points(std::vector<Vec2>& points) override { cpu_.read_points(points); }
