@@ -47,7 +47,7 @@ void JobManager::start() {
     w->warm_up();
     if (w->kind() == Backend::kGpu) ++live_gpu_workers_;
   }
-  queue_.set_worker_count(Backend::kGpu, live_gpu_workers_.load());
+  queue_.set_gpu_workers(live_gpu_workers_.load());
   for (auto& w : workers_) w->start();
   housekeeping_ = std::thread([this] { housekeeping(); });
 }
@@ -169,7 +169,7 @@ void JobManager::on_finished(Job& job) {
 void JobManager::on_retired(Worker& worker) {
   if (worker.kind() != Backend::kGpu) return;
   const int left = --live_gpu_workers_;
-  queue_.set_worker_count(Backend::kGpu, left);
+  queue_.set_gpu_workers(left);
   if (left > 0) return;
   spdlog::error("no GPU worker left: new and shared jobs run on the CPU, queued GPU jobs fail");
   for (const auto& job : queue_.take_all(Backend::kGpu)) {

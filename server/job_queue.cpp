@@ -21,9 +21,9 @@ void JobQueue::renumber(const Line& l) {
   for (const Entry& e : l) e.job->set_queue_position(position++);
 }
 
-void JobQueue::set_worker_count(Backend kind, int count) {
+void JobQueue::set_gpu_workers(int count) {
   std::lock_guard lock(mutex_);
-  if (kind == Backend::kGpu) gpu_workers_ = count;
+  gpu_workers_ = count;
   changed_.notify_all();
 }
 

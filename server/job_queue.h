@@ -31,9 +31,9 @@ class JobQueue {
  public:
   explicit JobQueue(size_t capacity) : capacity_(capacity) {}
 
-  // How many workers of `kind` take jobs now (the shared line's jobs go to the CPU workers
-  // alone when no GPU worker is left).
-  void set_worker_count(Backend kind, int count);
+  // How many GPU workers take jobs now (the shared line's jobs go to the CPU workers alone when
+  // none is left).
+  void set_gpu_workers(int count);
 
   // Queues `job` in the line of job->backend(). Throws Error(kUnavailable) when the queue is
   // full or closed.

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <functional>
 
 #include "core/common/error.h"
 #include "server/event_stream.h"
@@ -29,17 +30,18 @@ grpc::ServerUnaryReactor* finish_unary(grpc::CallbackServerContext* context,
 }
 
 // Parses the request, runs `body` on it and finishes the call with OK and the reply it returns,
-// or with the status its error maps to.
+// or, after `on_error` (when given), with the status its error maps to.
 template <typename Request, typename Body>
 grpc::ServerUnaryReactor* unary(grpc::CallbackServerContext* context, const BearerToken& token,
                                 const grpc::ByteBuffer* request, grpc::ByteBuffer* reply,
-                                Body&& body) {
+                                Body&& body, const std::function<void()>& on_error = {}) {
   if (grpc::Status status = token.check(*context); !status.ok())
     return finish_unary(context, status);
   try {
     *reply = serialize_message(body(parse_message<Request>(*request)));
     return finish_unary(context, grpc::Status::OK);
   } catch (...) {
+    if (on_error) on_error();
     return finish_unary(context, to_grpc_status(std::current_exception()));
   }
 }
@@ -65,18 +67,14 @@ grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Generate(
 grpc::ServerUnaryReactor* MeshService::Submit(grpc::CallbackServerContext* context,
                                               const grpc::ByteBuffer* request,
                                               grpc::ByteBuffer* reply) {
-  if (grpc::Status status = token_.check(*context); !status.ok())
-    return finish_unary(context, status);
-  try {
-    const auto mesh_request = parse_message<v1::MeshRequest>(*request);
-    v1::JobRef ref;
-    ref.set_job_id(manager_.submit(mesh_request, Job::Clock::time_point::max())->id());
-    *reply = serialize_message(ref);
-    return finish_unary(context, grpc::Status::OK);
-  } catch (...) {
-    metrics_.count_job("rejected");
-    return finish_unary(context, to_grpc_status(std::current_exception()));
-  }
+  return unary<v1::MeshRequest>(
+      context, token_, request, reply,
+      [&](const v1::MeshRequest& mesh_request) {
+        v1::JobRef ref;
+        ref.set_job_id(manager_.submit(mesh_request, Job::Clock::time_point::max())->id());
+        return ref;
+      },
+      [&] { metrics_.count_job("rejected"); });
 }
 
 grpc::ServerWriteReactor<grpc::ByteBuffer>* MeshService::Watch(grpc::CallbackServerContext* context,

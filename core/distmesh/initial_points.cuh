@@ -56,13 +56,12 @@ MESHD_HD inline Vec2 initial_grid_point(const InitialGrid& g, int64_t index) {
           g.origin.y + g.dy * static_cast<double>(j)};
 }
 
-// A uniform number in [0, 1) from (seed, index): splitmix64's finaliser.
-MESHD_HD inline double hash_uniform(uint64_t seed, uint64_t index) {
-  uint64_t z = seed + 0x9E3779B97F4A7C15ull * (index + 1);
+// The seed's 64 bits well mixed: splitmix64's finaliser.
+MESHD_HD inline uint64_t mix_seed(uint64_t seed) {
+  uint64_t z = seed + 0x9E3779B97F4A7C15ull;
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) * 0x1.0p-53;
+  return z ^ (z >> 31);
 }
 
 // The threshold in [0, 1) of grid point `index` for the rejection test: Roberts' R2 sequence
@@ -77,8 +76,7 @@ MESHD_HD inline double dither_threshold(uint64_t seed, const InitialGrid& g, int
   constexpr uint64_t kRowStep = 0x91E10DA5C79E7B1Cull;     // 2^64 / p^2
   const auto column = static_cast<uint64_t>(index % g.nx),
              row = static_cast<uint64_t>(index / g.nx);
-  const uint64_t shift = static_cast<uint64_t>(hash_uniform(seed, 0) * 0x1.0p64);
-  const uint64_t t = shift + column * kColumnStep + row * kRowStep;  // modulo 2^64
+  const uint64_t t = mix_seed(seed) + column * kColumnStep + row * kRowStep;  // modulo 2^64
   return static_cast<double>(t >> 11) * 0x1.0p-53;
 }
 

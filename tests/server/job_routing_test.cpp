@@ -54,7 +54,7 @@ TEST(RunTimeModel, MeasurementsCorrectTheirSizeAndLendToOthers) {
 // it after 7 x 10 ms and finish at 80 ms).
 TEST(JobQueue, CpuWorkerTakesTheFirstSharedJobItFinishesFirst) {
   JobQueue queue(64);
-  queue.set_worker_count(Backend::kGpu, 1);
+  queue.set_gpu_workers(1);
   queue.observe_run(Backend::kGpu, 2000, 0.010);
   queue.observe_run(Backend::kCpu, 2000, 0.075);
   std::vector<std::shared_ptr<Job>> jobs;
@@ -70,7 +70,7 @@ TEST(JobQueue, CpuWorkerTakesTheFirstSharedJobItFinishesFirst) {
 
 TEST(JobQueue, LargeSharedJobWaitsForTheGpu) {
   JobQueue queue(64);
-  queue.set_worker_count(Backend::kGpu, 1);
+  queue.set_gpu_workers(1);
   auto large = job_of(1e6), cpu_only = job_of(1e6, Backend::kCpu);
   queue.push(large);
   queue.push(cpu_only);
@@ -83,7 +83,7 @@ TEST(JobQueue, LargeSharedJobWaitsForTheGpu) {
 
 TEST(JobQueue, OwnLineAndSharedLineInterleaveByPriority) {
   JobQueue queue(64);
-  queue.set_worker_count(Backend::kGpu, 1);
+  queue.set_gpu_workers(1);
   auto shared_low = job_of(2000, Backend::kAuto, 0), gpu_high = job_of(2001, Backend::kGpu, 5);
   auto shared_high = job_of(2002, Backend::kAuto, 9);
   for (auto& j : {shared_low, gpu_high, shared_high}) queue.push(j);
@@ -96,13 +96,13 @@ TEST(JobQueue, OwnLineAndSharedLineInterleaveByPriority) {
 // With no GPU worker left, a CPU worker waiting on a shared job it declined takes it.
 TEST(JobQueue, SharedJobsFallToTheCpuWhenTheLastGpuWorkerGoes) {
   JobQueue queue(64);
-  queue.set_worker_count(Backend::kGpu, 1);
+  queue.set_gpu_workers(1);
   auto large = job_of(1e6);
   queue.push(large);
   std::shared_ptr<Job> taken;
   std::thread cpu([&] { taken = queue.pop(Backend::kCpu); });
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  queue.set_worker_count(Backend::kGpu, 0);
+  queue.set_gpu_workers(0);
   cpu.join();
   EXPECT_EQ(taken, large);
   queue.close();
@@ -112,7 +112,7 @@ TEST(JobQueue, SharedJobsFallToTheCpuWhenTheLastGpuWorkerGoes) {
 // decision is revisited on every push and every finished job.
 TEST(JobQueue, DeclinedSharedJobIsTakenWhenTheGpuFallsBehind) {
   JobQueue queue(64);
-  queue.set_worker_count(Backend::kGpu, 1);
+  queue.set_gpu_workers(1);
   queue.observe_run(Backend::kGpu, 2000, 0.010);
   queue.observe_run(Backend::kCpu, 2000, 0.015);
   auto first = job_of(2000);
