@@ -117,6 +117,7 @@ struct GpuEngine::Impl {
   // The programs, on the device.
   DeviceBuffer<Instruction> geometry_code, size_code;
   DeviceBuffer<double> geometry_params, size_params;
+  DeviceBuffer<BvhNode> geometry_nodes, size_nodes;
   DeviceBuffer<SizeTermCode> size_terms;
   ProgramView fd{};
   SizeView fh{};
@@ -166,13 +167,15 @@ struct GpuEngine::Impl {
     geometry_params.upload(prob.geometry.params.data(), prob.geometry.params.size(), stream);
     size_code.upload(prob.size.shapes.code.data(), prob.size.shapes.code.size(), stream);
     size_params.upload(prob.size.shapes.params.data(), prob.size.shapes.params.size(), stream);
+    geometry_nodes.upload(prob.geometry.nodes.data(), prob.geometry.nodes.size(), stream);
+    size_nodes.upload(prob.size.shapes.nodes.data(), prob.size.shapes.nodes.size(), stream);
     size_terms.upload(prob.size.terms.data(), prob.size.terms.size(), stream);
     fd = {geometry_code.data(), static_cast<uint32_t>(prob.geometry.code.size()),
-          geometry_params.data()};
-    fh = {
-        {size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()), size_params.data()},
-        size_terms.data(),
-        static_cast<uint32_t>(prob.size.terms.size())};
+          geometry_params.data(), geometry_nodes.data()};
+    fh = {{size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()),
+           size_params.data(), size_nodes.data()},
+          size_terms.data(),
+          static_cast<uint32_t>(prob.size.terms.size())};
     uniform = prob.size.uniform();
     nfix = static_cast<int64_t>(prob.fixed_points.size());
     fixed.upload(prob.fixed_points.data(), prob.fixed_points.size(), stream);

@@ -39,12 +39,15 @@ Box primitive_box(Op op, const double* q) {
   }
 }
 
-}  // namespace
+double area(const Box& b) { return (b.max.x - b.min.x) * (b.max.y - b.min.y); }
 
-Box program_bounds(const Program& program, uint32_t begin, uint32_t end) {
+// The walk both boxes share; `overlap` says whether a kMax takes the overlap of its operands'
+// boxes (a box holding the domain) or the smaller of them (a distance bound).
+Box walk_bounds(const Program& program, uint32_t begin, uint32_t end, bool overlap) {
   std::vector<Box> stack;
   for (uint32_t i = begin; i < end; ++i) {
     const Instruction& ins = program.code[i];
+    if (ins.op == Op::kUnionIndexed) continue;  // its fold follows
     if (ins.op == Op::kNegate) {
       stack.back() = kWholePlane;
     } else if (ins.op == Op::kMin || ins.op == Op::kMax) {
@@ -54,15 +57,27 @@ Box program_bounds(const Program& program, uint32_t begin, uint32_t end) {
       if (ins.op == Op::kMin) {
         a = {{std::min(a.min.x, b.min.x), std::min(a.min.y, b.min.y)},
              {std::max(a.max.x, b.max.x), std::max(a.max.y, b.max.y)}};
-      } else {
+      } else if (overlap) {
         a = {{std::max(a.min.x, b.min.x), std::max(a.min.y, b.min.y)},
              {std::min(a.max.x, b.max.x), std::min(a.max.y, b.max.y)}};
+      } else if (!(area(a) <= area(b))) {
+        a = b;
       }
     } else {
       stack.push_back(primitive_box(ins.op, program.params.data() + ins.operand));
     }
   }
   return stack.empty() ? Box{{kInf, kInf}, {-kInf, -kInf}} : stack.back();
+}
+
+}  // namespace
+
+Box program_bounds(const Program& program, uint32_t begin, uint32_t end) {
+  return walk_bounds(program, begin, end, true);
+}
+
+Box distance_bound_box(const Program& program, uint32_t begin, uint32_t end) {
+  return walk_bounds(program, begin, end, false);
 }
 
 }  // namespace meshd

@@ -14,6 +14,13 @@ inline Box program_bounds(const Program& program) {
   return program_bounds(program, 0, static_cast<uint32_t>(program.code.size()));
 }
 
+// A box B of instructions [begin, end) such that their value at any p outside B is at least
+// the distance from p to B: what lets an indexed union skip an operand (sdf_eval.cuh). Unlike
+// program_bounds, an intersection or a difference takes one operand's box (the smallest), not
+// the overlap: max(a, b) >= a, but a point near two long crossing boxes can lie much farther
+// from their overlap than from either.
+Box distance_bound_box(const Program& program, uint32_t begin, uint32_t end);
+
 inline bool is_bounded(const Box& b) {
   return std::isfinite(b.min.x) && std::isfinite(b.min.y) && std::isfinite(b.max.x) &&
          std::isfinite(b.max.y);

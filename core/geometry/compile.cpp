@@ -8,9 +8,15 @@
 #include <type_traits>
 
 #include "core/common/error.h"
+#include "core/geometry/bounds.h"
 
 namespace meshd {
 namespace {
+
+// Below these sizes a plain walk over every edge or operand costs less than the tree's.
+constexpr size_t kIndexedPolygonMinVertices = 64;
+constexpr size_t kIndexedUnionMinOperands = 8;
+constexpr uint32_t kEdgesPerLeaf = 8;
 
 // Emits postfix code for one tree, keeping track of how deep the value stack gets.
 class Emitter {
@@ -123,23 +129,84 @@ class Emitter {
     info.path = s.path;
     program_.params.push_back(static_cast<double>(poly.vertices.size()));
     program_.params.insert(program_.params.end(), corners.begin(), corners.end());
+    program_.params.push_back(signed_area(poly.vertices) >= 0.0 ? 1.0 : -1.0);
+    const uint32_t bvh =
+        poly.vertices.size() >= kIndexedPolygonMinVertices ? index_edges(corners) : kNoBvh;
     info.corners = std::move(corners);
     program_.code.push_back(
-        {Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size())});
+        {Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size()), bvh});
     program_.primitives.push_back(std::move(info));
     return 1;
   }
 
-  // Left fold: a, b, op, c, op, ... keeps one accumulated value on the stack.
+  // Twice the signed area (shoelace): positive for a counter-clockwise polygon.
+  static double signed_area(const std::vector<Vec2>& v) {
+    double sum = 0.0;
+    for (size_t i = 1; i + 1 < v.size(); ++i) sum += cross(v[i] - v[0], v[i + 1] - v[0]);
+    return sum;
+  }
+
+  // A tree whose leaves are runs of kEdgesPerLeaf consecutive edges of the polygon `xy`
+  // (#V by 2, flattened): neighbouring edges lie close, so a run makes a tight box.
+  uint32_t index_edges(const std::vector<double>& xy) {
+    const auto n = static_cast<uint32_t>(xy.size() / 2);
+    std::vector<BvhItem> runs;
+    for (uint32_t first = 0; first < n; first += kEdgesPerLeaf) {
+      const uint32_t last = std::min(n, first + kEdgesPerLeaf);
+      Box b{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+      for (uint32_t k = first; k <= last; ++k) {  // the run's vertices and its last edge's end
+        const uint32_t v = k % n;
+        b = {{std::min(b.min.x, xy[2 * v]), std::min(b.min.y, xy[2 * v + 1])},
+             {std::max(b.max.x, xy[2 * v]), std::max(b.max.y, xy[2 * v + 1])}};
+      }
+      runs.push_back({b, first, last});
+    }
+    return build_bvh(std::move(runs), program_.nodes);
+  }
+
+  // Left fold: a, b, op, c, op, ... keeps one accumulated value on the stack. A union of many
+  // operands gets an index in front of its fold; a difference of many subtrahends is emitted
+  // as a minus the union of the rest, max(a, -min(b, c, ...)), which has the same value as the
+  // fold max(max(a, -b), -c) ... and lets that union be indexed too.
   int emit_node(const Shape&, const Csg& csg, const Similarity& t) {
+    const auto& ops = csg.operands;
+    const bool many = ops.size() >= kIndexedUnionMinOperands;
+    if (csg.op == CsgOp::kUnion && many) return emit_indexed_union(ops.begin(), ops.end(), t);
+    if (csg.op == CsgOp::kDifference && ops.size() > kIndexedUnionMinOperands) {
+      const int base = emit(ops.front(), t);
+      const int rest = 1 + emit_indexed_union(ops.begin() + 1, ops.end(), t);
+      program_.code.push_back({Op::kNegate, 0, -1});
+      program_.code.push_back({Op::kMax, 0, -1});
+      return std::max(base, rest);
+    }
     int need = 0;
-    for (size_t i = 0; i < csg.operands.size(); ++i) {
-      need = std::max(need, (i == 0 ? 0 : 1) + emit(csg.operands[i], t));
+    for (size_t i = 0; i < ops.size(); ++i) {
+      need = std::max(need, (i == 0 ? 0 : 1) + emit(ops[i], t));
       if (i == 0) continue;
       if (csg.op == CsgOp::kDifference) program_.code.push_back({Op::kNegate, 0, -1});
       const Op op = csg.op == CsgOp::kUnion ? Op::kMin : Op::kMax;
       program_.code.push_back({op, 0, -1});
     }
+    return need;
+  }
+
+  // The union of [first, last): a kUnionIndexed instruction, then the plain fold, with a tree
+  // over the operands' instruction ranges and their distance-bound boxes (bounds.h).
+  int emit_indexed_union(std::vector<Shape>::const_iterator first,
+                         std::vector<Shape>::const_iterator last, const Similarity& t) {
+    const auto head = static_cast<uint32_t>(program_.code.size());
+    program_.code.push_back({Op::kUnionIndexed, 0, -1});
+    std::vector<BvhItem> operands;
+    int need = 0;
+    for (auto it = first; it != last; ++it) {
+      const auto begin = static_cast<uint32_t>(program_.code.size());
+      need = std::max(need, (it == first ? 0 : 1) + emit(*it, t));
+      const auto end = static_cast<uint32_t>(program_.code.size());
+      operands.push_back({distance_bound_box(program_, begin, end), begin, end});
+      if (it != first) program_.code.push_back({Op::kMin, 0, -1});
+    }
+    program_.code[head].operand = static_cast<uint32_t>(program_.code.size());
+    program_.code[head].bvh = build_bvh(std::move(operands), program_.nodes);
     return need;
   }
 

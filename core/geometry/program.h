@@ -7,28 +7,53 @@
 // checks both). Transforms are similarities, so the compiler has already folded them into the
 // primitives' parameters: every primitive distance is exact, and evaluation needs no matrices.
 //
+// Spatial indexes (bvh.h) make large geometries cost about what small ones do, without
+// changing a single distance:
+//   - a polygon of many vertices carries a tree over runs of its edges (Instruction::bvh);
+//   - a union of many operands (and the subtrahends of a difference of many) is preceded by a
+//     kUnionIndexed instruction whose tree has one leaf per operand, covering that operand's
+//     instructions. The ordinary left fold of the operands follows it, so a reader that skips
+//     kUnionIndexed (the bounds, the corner search, a nested evaluation) still sees the whole
+//     union; the evaluator instead visits the operands near the point and jumps to `operand`,
+//     the instruction after the fold.
+//
 // Parameter layout in `params`, starting at Instruction::operand:
 //   kCircle     cx cy r
 //   kBox        cx cy hx hy cos sin          (half extents in the box's own rotated frame)
 //   kEllipse    cx cy a b cos sin            (semi axes in the ellipse's own rotated frame)
 //   kHalfPlane  nx ny c                      (unit normal; inside where n.p <= c)
-//   kPolygon    n x0 y0 x1 y1 ... x(n-1) y(n-1)
+//   kPolygon    n x0 y0 x1 y1 ... x(n-1) y(n-1) s   (s = +1 counter-clockwise, -1 clockwise)
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/geometry/bvh.h"
+
 namespace meshd {
 
 constexpr int kMaxProgramStack = 40;
 
-enum class Op : uint32_t { kCircle, kBox, kEllipse, kHalfPlane, kPolygon, kMin, kMax, kNegate };
+enum class Op : uint32_t {
+  kCircle,
+  kBox,
+  kEllipse,
+  kHalfPlane,
+  kPolygon,
+  kMin,
+  kMax,
+  kNegate,
+  kUnionIndexed
+};
+
+constexpr uint32_t kNoBvh = 0xffffffffu;
 
 struct Instruction {
   Op op;
-  uint32_t operand;   // offset into params (primitives only)
-  int32_t primitive;  // index into Program::primitives; -1 for operations
+  uint32_t operand;       // primitives: offset into params; kUnionIndexed: the end of its fold
+  int32_t primitive;      // index into Program::primitives; -1 for operations
+  uint32_t bvh = kNoBvh;  // root in Program::nodes: a kPolygon's edges, a kUnionIndexed's operands
 };
 
 // What the host needs to know about each primitive beyond its distance.
@@ -43,15 +68,17 @@ struct ProgramView {
   const Instruction* code;
   uint32_t size;
   const double* params;
+  const BvhNode* nodes;
 };
 
 struct Program {
   std::vector<Instruction> code;
   std::vector<double> params;
+  std::vector<BvhNode> nodes;
   std::vector<PrimitiveInfo> primitives;
 
   ProgramView view() const {
-    return {code.data(), static_cast<uint32_t>(code.size()), params.data()};
+    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), nodes.data()};
   }
 };
 

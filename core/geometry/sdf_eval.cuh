@@ -7,6 +7,7 @@
 
 #include "core/common/hd.h"
 #include "core/common/vec2.h"
+#include "core/geometry/polygon_sdf.cuh"
 #include "core/geometry/program.h"
 
 namespace meshd {
@@ -32,25 +33,6 @@ MESHD_HD inline double sdf_box(const double* q, Vec2 p) {
 
 MESHD_HD inline double sdf_half_plane(const double* q, Vec2 p) {
   return q[0] * p.x + q[1] * p.y - q[2];
-}
-
-// Exact polygon distance: nearest edge, sign from the crossing number (even-odd).
-MESHD_HD inline double sdf_polygon(const double* q, Vec2 p) {
-  const int n = static_cast<int>(q[0]);
-  const double* v = q + 1;
-  double best = INFINITY;
-  bool inside = false;
-  for (int i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2 a{v[2 * j], v[2 * j + 1]}, b{v[2 * i], v[2 * i + 1]};
-    const Vec2 e = b - a, w = p - a;
-    const double ee = dot(e, e);
-    const double t = ee > 0.0 ? min2(max2(dot(w, e) / ee, 0.0), 1.0) : 0.0;
-    const Vec2 r = w - t * e;
-    best = min2(best, dot(r, r));
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * e.x / e.y) inside = !inside;
-  }
-  const double d = sqrt(best);
-  return inside ? -d : d;
 }
 
 // Distance from (y0, y1), y >= 0, to the ellipse with semi axes e0 >= e1 > 0 (Eberly's
@@ -114,8 +96,9 @@ MESHD_HD inline double sdf_ellipse(const double* q, Vec2 p) {
   return inside ? -d : d;
 }
 
-MESHD_HD inline double sdf_primitive(Op op, const double* q, Vec2 p) {
-  switch (op) {
+MESHD_HD inline double sdf_primitive(ProgramView prog, const Instruction& ins, Vec2 p) {
+  const double* q = prog.params + ins.operand;
+  switch (ins.op) {
     case Op::kCircle:
       return sdf_circle(q, p);
     case Op::kBox:
@@ -125,10 +108,53 @@ MESHD_HD inline double sdf_primitive(Op op, const double* q, Vec2 p) {
     case Op::kHalfPlane:
       return sdf_half_plane(q, p);
     case Op::kPolygon:
-      return sdf_polygon(q, p);
+      return ins.bvh == kNoBvh ? sdf_polygon(q, p) : sdf_polygon_indexed(q, prog.nodes, ins.bvh, p);
     default:
       return NAN;
   }
+}
+
+// How many kUnionIndexed levels the evaluator follows through its index; deeper ones run their
+// plain fold. A template parameter rather than recursion, which device code would pay for.
+constexpr int kIndexedUnionLevels = 2;
+
+template <int kLevels>
+MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p, int* owner);
+
+// The union that the kUnionIndexed instruction `ins` opens: the smallest operand value, from
+// the operands whose boxes could hold it. An operand's value is at least the distance to its
+// box from outside it (box_bounds in bounds.h), so a box farther than the best value so far is
+// skipped; a box containing p never is, its operand may be negative there. Ties go to the
+// earlier operand, as in the fold.
+template <int kLevels>
+MESHD_HD double eval_union_indexed(ProgramView prog, const Instruction& ins, Vec2 p, int* owner) {
+  double best = INFINITY;
+  uint32_t best_first = 0xffffffffu;
+  int best_owner = -1;
+  uint32_t stack[kMaxBvhDepth + 2];
+  int top = 0;
+  stack[0] = ins.bvh;
+  while (top >= 0) {
+    const BvhNode& node = prog.nodes[stack[top--]];
+    const double d2 = box_distance2(node.box, p);
+    if (d2 > 0.0 && (best <= 0.0 || d2 > best * best)) continue;
+    if (node.leaf) {
+      int who = -1;
+      const double value = eval_program<kLevels>(prog, node.first, node.last, p, &who);
+      if (value < best || (value == best && node.first < best_first)) {
+        best = value;
+        best_first = node.first;
+        best_owner = who;
+      }
+      continue;
+    }
+    const double dl = box_distance2(prog.nodes[node.first].box, p);
+    const double dr = box_distance2(prog.nodes[node.last].box, p);
+    stack[++top] = dl <= dr ? node.last : node.first;
+    stack[++top] = dl <= dr ? node.first : node.last;
+  }
+  *owner = best_owner;
+  return best;
 }
 
 // g++ cannot see that a compiled program always pushes before it pops, and where this inlines
@@ -138,11 +164,11 @@ MESHD_HD inline double sdf_primitive(Op op, const double* q, Vec2 p) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-// Signed distance of the program's instructions [begin, end) at p. When `owner` is not null it
-// receives the index of the primitive whose distance the result is (the boundary it is nearest
-// to), which tags boundary edges.
-MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p,
-                                      int* owner = nullptr) {
+// Signed distance of the program's instructions [begin, end) at p, following kLevels levels of
+// indexed unions. When `owner` is not null it receives the index of the primitive whose
+// distance the result is (the boundary it is nearest to), which tags boundary edges.
+template <int kLevels>
+MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p, int* owner) {
   double value[kMaxProgramStack];
   int who[kMaxProgramStack];
   int top = -1;
@@ -166,9 +192,16 @@ MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t
       case Op::kNegate:
         value[top] = -value[top];
         break;
+      case Op::kUnionIndexed:
+        if constexpr (kLevels > 0) {
+          ++top;
+          value[top] = eval_union_indexed<kLevels - 1>(prog, ins, p, &who[top]);
+          i = ins.operand - 1;
+        }
+        break;  // with no level left, the fold that follows computes the same union
       default:
         ++top;
-        value[top] = sdf_primitive(ins.op, prog.params + ins.operand, p);
+        value[top] = sdf_primitive(prog, ins, p);
         who[top] = ins.primitive;
         break;
     }
@@ -179,6 +212,11 @@ MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
+
+MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p,
+                                      int* owner = nullptr) {
+  return eval_program<kIndexedUnionLevels>(prog, begin, end, p, owner);
+}
 
 MESHD_HD inline double eval_sdf(ProgramView prog, Vec2 p) {
   return eval_sdf_range(prog, 0, prog.size, p);

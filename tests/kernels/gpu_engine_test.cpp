@@ -8,6 +8,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <map>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -400,6 +401,51 @@ TEST_P(GpuAgreement, LaggedScaleKeepsTheMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement, ::testing::Values("G1", "G2", "G3", "G4", "G5"));
+
+// The spatial indexes on the device (bvh.h): a square minus 60 disks (an indexed difference)
+// and minus a lake whose shore is a polygon of 400 vertices (an indexed polygon), graded
+// toward the lake through the same polygon. The device evaluates them as the host does.
+TEST(GpuIndexedGeometry, ManyHolesAndALongPolygonMatchTheCpuEngine) {
+  SKIP_WITHOUT_GPU();
+  std::vector<Vec2> shore;
+  for (int k = 0; k < 400; ++k) {
+    const double a = 2 * std::numbers::pi * k / 400, r = 1.5 * (1 + 0.2 * std::sin(5 * a));
+    shore.push_back({5 + r * std::cos(a), 5 + r * std::sin(a)});
+  }
+  const Shape lake{Polygon{shore}, "shore", ""};
+  std::vector<Shape> ops{Shape{Rectangle{{0, 0}, {10, 10}}, "outer", ""}, lake};
+  for (int k = 0; k < 60; ++k) {
+    const Vec2 c{0.8 + 1.2 * (k % 8), 0.8 + 1.2 * (k / 8)};
+    if (norm(c - Vec2{5, 5}) > 2.3) ops.push_back(Shape{Circle{c, 0.25}, "hole", ""});
+  }
+  Problem p;
+  p.geometry = Shape{Csg{CsgOp::kDifference, ops}, "", ""};
+  DistanceSize graded;
+  graded.shape = lake;
+  graded.slope = 0.3;
+  graded.h_max = 3.0;
+  p.size.terms.push_back(graded);
+  p.h0 = 0.04;
+  const CompiledProblem c = compile_problem(p);
+  ASSERT_EQ(std::count_if(c.geometry.code.begin(), c.geometry.code.end(),
+                          [](const Instruction& i) { return i.op == Op::kUnionIndexed; }),
+            1);
+  ASSERT_NE(c.size.shapes.code[0].bvh, kNoBvh);
+  ThreadPool pool;
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
+  const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
+  const auto validity = check_validity(rg.mesh);
+  EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
+  EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
+              static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
+  EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
+  EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
+  EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
+  EXPECT_TRUE(rg.stats.converged);
+  EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+}
 
 TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
   SKIP_WITHOUT_GPU();

@@ -94,7 +94,7 @@ void expect_on_two_boundaries(const Shape& s, const std::vector<Vec2>& corners) 
     int on = 0;
     for (const Instruction& ins : p.code) {
       if (ins.primitive < 0) continue;
-      on += std::fabs(sdf_primitive(ins.op, p.params.data() + ins.operand, c)) <= 1e-12;
+      on += std::fabs(sdf_primitive(p.view(), ins, c)) <= 1e-12;
     }
     EXPECT_GE(on, 1) << c.x << " " << c.y;
   }

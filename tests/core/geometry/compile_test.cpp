@@ -70,8 +70,10 @@ TEST(CompileGeometry, PolygonParameters) {
   const Program p = compile_geometry(Shape{Polygon{v}, "", ""});
   ASSERT_EQ(p.code.size(), 1u);
   EXPECT_EQ(p.code[0].op, Op::kPolygon);
-  EXPECT_EQ(p.params, (std::vector<double>{3, 0, 0, 2, 0, 1, 1.5}));
+  EXPECT_EQ(p.params, (std::vector<double>{3, 0, 0, 2, 0, 1, 1.5, 1}));  // counter-clockwise
   EXPECT_EQ(p.primitives[0].corners, (std::vector<double>{0, 0, 2, 0, 1, 1.5}));
+  const Program cw = compile_geometry(Shape{Polygon{{v[2], v[1], v[0]}}, "", ""});
+  EXPECT_EQ(cw.params.back(), -1);
 }
 
 TEST(CompileGeometry, NaryOperationsFoldLeftInTwoStackSlots) {

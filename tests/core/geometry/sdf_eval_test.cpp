@@ -539,7 +539,7 @@ TEST(SdfEval, OwnerIsThePrimitiveWhoseDistanceWins) {
   for (Vec2 p : {Vec2{0.55, 0}, Vec2{0.95, 0.1}}) {  // owner's own distance is the result
     const int k = owner_at(g2, p);
     const double full = eval_sdf(g2.view(), p);  // the hole's distance enters negated
-    const double own = sdf_primitive(g2.code[k].op, g2.params.data() + g2.code[k].operand, p);
+    const double own = sdf_primitive(g2.view(), g2.code[k], p);
     EXPECT_EQ(std::fabs(full), std::fabs(own));
   }
 
