@@ -84,6 +84,24 @@ TEST(BoundaryCorners, PolygonVerticesTransformed) {
   EXPECT_EQ(cr.size(), 4u);
 }
 
+TEST(BoundaryCorners, FinelySampledCurveHasNoCornersButItsSharpVerticesDo) {
+  std::vector<Vec2> circle_samples, half_disk;
+  for (int k = 0; k < 720; ++k) {
+    const double a = 2 * kPi * k / 720;
+    circle_samples.push_back({std::cos(a), std::sin(a)});
+  }
+  EXPECT_TRUE(corners_of(Shape{Polygon{circle_samples}, "", ""}).empty());
+  // A half disk: the arc turns by 0.5 degrees per vertex, the diameter's ends by 90.
+  for (int k = 0; k <= 360; ++k) {
+    const double a = kPi * k / 360;
+    half_disk.push_back({std::cos(a), std::sin(a)});
+  }
+  const auto c = corners_of(Shape{Polygon{half_disk}, "", ""});
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_TRUE(contains(c, half_disk.front()));
+  EXPECT_TRUE(contains(c, half_disk.back()));
+}
+
 // ---- Crossings of two primitives ---------------------------------------------------------------
 
 // Every corner lies on the boundary of the whole shape and of at least two of its primitives.
