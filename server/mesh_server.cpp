@@ -39,6 +39,7 @@ void MeshServer::start() {
   int port = 0;
   builder.AddListeningPort(options_.listen, credentials(), &port);
   builder.RegisterService(service_.get());
+  builder.SetMaxReceiveMessageSize(options_.max_request_mb << 20);
   server_ = builder.BuildAndStart();
   if (!server_ || port == 0) {
     throw Error(ErrorCode::kUnavailable, "--listen", "cannot listen on " + options_.listen);

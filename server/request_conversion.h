@@ -19,13 +19,13 @@ namespace meshd {
 // What one request may ask for. The defaults are the ones quoted in the proto comments; a
 // server may lower or raise them (a deployment with small GPUs lowers max_nodes).
 struct ConversionLimits {
-  int64_t max_nodes = 5'000'000;      // estimated node count (RESOURCE_EXHAUSTED above)
-  int max_tree_depth = 32;            // levels of one Shape tree; a lone primitive is 1
-  int max_tree_nodes = 10'000;        // Shape nodes in one tree (the geometry, or a size term's)
-  int max_polygon_vertices = 10'000;  // vertices of one polygon (distance costs O(V))
-  double max_size_ratio = 1000;       // bound on (largest h) / (smallest h) of the size field
-  int max_size_terms = 100;           // terms of the size field
-  int max_fixed_points = 100'000;     // entries of fixed_points
+  int64_t max_nodes = 5'000'000;         // estimated node count (RESOURCE_EXHAUSTED above)
+  int max_tree_depth = 32;               // levels of one Shape tree; a lone primitive is 1
+  int max_tree_nodes = 1'000'000;        // Shape nodes in one tree (geometry or a size term)
+  int max_polygon_vertices = 5'000'000;  // vertices of one polygon (indexed: bvh.h)
+  double max_size_ratio = 1000;          // bound on (largest h) / (smallest h) of the size field
+  int max_size_terms = 100;              // terms of the size field
+  int max_fixed_points = 100'000;        // entries of fixed_points
   // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well
   // inside a client's default 4 MiB message limit.
   int max_snapshot_nodes = 50'000;

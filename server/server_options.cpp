@@ -32,6 +32,8 @@ const char* server_usage() {
   --max-retained N          finished jobs kept at most (default 1000)
   --drain-timeout SECONDS   on SIGTERM, how long running jobs may finish (default 30)
   --max-nodes N             largest estimated mesh accepted (default 5000000)
+  --max-request-mb N        largest request message accepted, in MiB, [1, 2047] (default
+                            256: a polygon of 5 million vertices takes about 100)
   --max-snapshot-nodes N    largest mesh whose snapshots may stream, [0, 100000] (default
                             50000; a snapshot must fit a client's 4 MiB message limit)
   --tls-cert FILE --tls-key FILE
@@ -86,6 +88,8 @@ const std::map<std::string, Setter>& setters() {
          else
            throw_invalid("--" + f, "must be auto, gpu or cpu (got '" + v + "')");
        }},
+      {"max-request-mb",
+       [](O& o, S f, S v) { o.max_request_mb = static_cast<int>(integer(f, v, 1, 2047)); }},
       {"gpu-workers",
        [](O& o, S f, S v) { o.gpu_workers = static_cast<int>(integer(f, v, 1, 64)); }},
       {"cpu-workers",

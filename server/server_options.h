@@ -16,6 +16,7 @@ struct ServerOptions {
   // ~2k-node jobs of one, 8 workers 4.2x, 16 no more (bench/RESULTS.md).
   int gpu_workers = 4;
   int cpu_workers = 1;
+  int max_request_mb = 256;  // largest request message; gRPC's own default is 4 MiB
   unsigned cpu_threads = 0;  // per CPU worker; 0: the cores shared among the CPU workers
   double drain_timeout_s = 30;
   JobManagerOptions jobs;

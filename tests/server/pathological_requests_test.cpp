@@ -100,19 +100,42 @@ TEST(Pathological, TreeDepth) {
 }
 
 TEST(Pathological, TreeNodeCount) {
-  // A union of 10,000 circles is 10,001 nodes, one above the default limit.
+  // A union of 100 circles is 101 nodes, one above the limit set here.
+  const ConversionLimits limits{.max_tree_nodes = 100};
   v1::MeshRequest request = parse(kDisk);
   v1::Union* all = request.mutable_geometry()->mutable_union_();
-  for (int i = 0; i < 10'000; ++i) all->add_shapes()->mutable_circle()->set_radius(1);
+  for (int i = 0; i < 100; ++i) all->add_shapes()->mutable_circle()->set_radius(1);
   expect_refused(request, ErrorCode::kInvalidArgument, "geometry",
-                 {"more than the limit of 10000 shape nodes"});
+                 {"more than the limit of 100 shape nodes"}, limits);
   // A size term's shape counts as a tree of its own.
   v1::MeshRequest sized = parse(kDisk + "size { terms { distance { h_min: 1 h_max: 2 } } }");
   v1::Union* shapes =
       sized.mutable_size()->mutable_terms(0)->mutable_distance()->mutable_shape()->mutable_union_();
-  for (int i = 0; i < 10'000; ++i) shapes->add_shapes()->mutable_circle()->set_radius(1);
+  for (int i = 0; i < 100; ++i) shapes->add_shapes()->mutable_circle()->set_radius(1);
   expect_refused(sized, ErrorCode::kInvalidArgument, "size.terms[0].distance.shape",
-                 {"more than the limit of 10000 shape nodes"});
+                 {"more than the limit of 100 shape nodes"}, limits);
+}
+
+TEST(Pathological, DefaultLimitsTakeTenThousandShapesAndLongPolygons) {
+  // Spatial indexes make both cheap to evaluate, so the defaults admit them.
+  v1::MeshRequest request = parse("h0: 0.05");
+  v1::Union* all = request.mutable_geometry()->mutable_union_();
+  for (int i = 0; i < 10'000; ++i) {
+    v1::Circle* c = all->add_shapes()->mutable_circle();
+    c->mutable_center()->set_x(i % 100);
+    c->mutable_center()->set_y(i / 100);
+    c->set_radius(0.3);
+  }
+  EXPECT_NO_THROW(to_job_spec(request, ConversionLimits{}));
+  v1::MeshRequest ring = parse("h0: 0.05");
+  v1::Polygon* p = ring.mutable_geometry()->mutable_polygon();
+  for (int i = 0; i < 200'000; ++i) {
+    const double a = 2 * M_PI * i / 200'000;
+    v1::Vec2* v = p->add_vertices();
+    v->set_x(std::cos(a));
+    v->set_y(std::sin(a));
+  }
+  EXPECT_NO_THROW(to_job_spec(ring, ConversionLimits{}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -121,14 +144,15 @@ TEST(Pathological, TreeNodeCount) {
 TEST(Pathological, PolygonVertexCount) {
   v1::MeshRequest request = parse("h0: 0.1");
   v1::Polygon* p = request.mutable_geometry()->mutable_polygon();
-  for (int i = 0; i < 10'001; ++i) {
-    const double a = 2 * M_PI * i / 10'001;
+  for (int i = 0; i < 1'001; ++i) {
+    const double a = 2 * M_PI * i / 1'001;
     v1::Vec2* v = p->add_vertices();
     v->set_x(std::cos(a));
     v->set_y(std::sin(a));
   }
   expect_refused(request, ErrorCode::kInvalidArgument, "geometry.polygon.vertices",
-                 {"at most 10000 vertices allowed (got 10001)"});
+                 {"at most 1000 vertices allowed (got 1001)"},
+                 ConversionLimits{.max_polygon_vertices = 1'000});
   expect_invalid("geometry { " + polygon({{0, 0}, {1, 0}}) + " } h0: 0.1",
                  "geometry.polygon.vertices", {"at least 3 vertices (got 2)"});
 }
