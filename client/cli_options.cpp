@@ -180,8 +180,8 @@ Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file,
   --where EXPR             OGR SQL attribute filter, e.g. "name = 'Isla Grande'"
   --clip XMIN,YMIN,XMAX,YMAX   clip to this box, in the output CRS
   --subtract-from-clip     the geometry is the clip box minus the import (the sea round land)
-  --simplify F             simplify, keeping topology, to a tolerance of F * h0; rings left
-                           degenerate are dropped and counted
+  --simplify F             simplify, keeping topology, to a tolerance of F * h0; rings of
+                           less area than the tolerance squared are dropped and counted
   --to-crs CRS             output CRS (EPSG:NNNN, WKT, PROJ); default: the UTM zone of the
                            data's centre for data in degrees, else the file's CRS; 'none' keeps
                            the coordinates as they are

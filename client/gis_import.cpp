@@ -116,8 +116,11 @@ void keep_polygons(const OGRGeometry& g, OGRMultiPolygon& out) {
 }
 
 // The ring without its closing vertex and without repeated consecutive vertices; empty when it
-// is degenerate (fewer than 3 distinct vertices, or no area against its size).
-std::vector<Vec2> ring_vertices(const OGRLinearRing& ring) {
+// is degenerate: fewer than 3 distinct vertices, no area against its size, or an area of at most
+// min_area (the square of the simplification tolerance: topology-preserving simplification
+// never collapses a ring, but one that fits in a tolerance-wide square is below the resolution
+// that was asked for).
+std::vector<Vec2> ring_vertices(const OGRLinearRing& ring, double min_area) {
   std::vector<Vec2> v;
   v.reserve(static_cast<size_t>(ring.getNumPoints()));
   for (int i = 0; i < ring.getNumPoints(); ++i) {
@@ -135,7 +138,7 @@ std::vector<Vec2> ring_vertices(const OGRLinearRing& ring) {
     box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
   }
   const double span = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
-  if (!(std::abs(twice_area) > 1e-12 * span * span)) return {};
+  if (!(std::abs(twice_area) > std::max(1e-12 * span * span, 2 * min_area))) return {};
   return v;
 }
 
@@ -325,18 +328,19 @@ class LayerReader {
     }
     OGRMultiPolygon polygons;
     keep_polygons(*g, polygons);
+    const double min_area = o_.simplify_tolerance * o_.simplify_tolerance;
     bool contributed = false;
     for (const OGRPolygon* polygon : polygons) {
       ImportedPolygon p;
       p.fid = f.fid;
-      p.outer = ring_vertices(*polygon->getExteriorRing());
+      p.outer = ring_vertices(*polygon->getExteriorRing(), min_area);
       const int holes = polygon->getNumInteriorRings();
       if (p.outer.empty()) {
         out.dropped_rings += 1 + holes;
         continue;
       }
       for (int i = 0; i < holes; ++i) {
-        std::vector<Vec2> hole = ring_vertices(*polygon->getInteriorRing(i));
+        std::vector<Vec2> hole = ring_vertices(*polygon->getInteriorRing(i), min_area);
         if (hole.empty())
           ++out.dropped_rings;
         else
@@ -352,7 +356,7 @@ class LayerReader {
 
  private:
   [[noreturn]] void fail(int64_t fid, const std::string& what) const {
-    throw_invalid(kField, where_ + ", feature " + std::to_string(fid) + ": geometry " + what);
+    throw_invalid(kField, where_ + ", feature " + std::to_string(fid) + " " + what);
   }
 
   static bool finite(const OGRMultiPolygon& g) {

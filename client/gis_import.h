@@ -8,9 +8,9 @@
 //   3. reproject to the output CRS: --to-crs, else the UTM zone of the data's centre when the
 //      data is in degrees, else keep the file's coordinates
 //   4. clip to the box, 5. simplify (topology preserving)                   (the output CRS)
-//   6. rings as vertex lists without the closing vertex; rings that became degenerate (fewer
-//      than 3 distinct vertices or no area) are dropped and counted, a polygon with its holes
-//      when its outer ring goes.
+//   6. rings as vertex lists without the closing vertex; degenerate rings (fewer than 3
+//      distinct vertices, no area, or, when simplifying, an area of at most the tolerance
+//      squared) are dropped and counted, a polygon with its holes when its outer ring goes.
 // Every error is Error(kInvalidArgument) naming the flag it comes from ("--import" for the file
 // and its features) and, for a feature, the file, the layer and the feature's FID.
 // GDAL stays behind this header: nothing here includes it.
@@ -55,7 +55,7 @@ struct ImportedLayer {
   std::string crs;    // the output CRS, e.g. "EPSG:32632 (WGS 84 / UTM zone 32N)"
   std::vector<ImportedPolygon> polygons;
   int features = 0;       // features that contributed at least one polygon
-  int dropped_rings = 0;  // rings that simplification made degenerate, holes included
+  int dropped_rings = 0;  // degenerate rings left out (step 6), holes included
   int64_t vertices() const;
 };
 

@@ -98,13 +98,17 @@ void import_into(const CliOptions& o, v1::MeshRequest& request, std::string* sum
   if (summary != nullptr) {
     size_t holes = 0;
     for (const auto& p : layer.polygons) holes += p.holes.size();
-    *summary = "imported " + std::to_string(layer.polygons.size()) + " polygons (" +
-               std::to_string(holes) + " holes, " + std::to_string(layer.vertices()) +
-               " vertices) of " + std::to_string(layer.features) + " features from " + o.gis.path +
+    auto count = [](size_t n, const char* what) {
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    *summary = "imported " + count(layer.polygons.size(), "polygon") + " (" + count(holes, "hole") +
+               ", " + std::to_string(layer.vertices()) + " vertices) of " +
+               count(static_cast<size_t>(layer.features), "feature") + " from " + o.gis.path +
                ", layer '" + layer.layer + "', as group '" + name + "' in " + layer.crs;
     if (layer.dropped_rings > 0) {
       *summary += "; dropped " + std::to_string(layer.dropped_rings) +
-                  " rings that became degenerate (fewer than 3 distinct vertices or no area)";
+                  " degenerate rings (fewer than 3 distinct vertices, or no more area than the "
+                  "simplification tolerance squared)";
     }
   }
 }
