@@ -29,6 +29,22 @@ int integer(const std::string& flag, const std::string& v) {
   return static_cast<int>(x);
 }
 
+// "xmin,ymin,xmax,ymax" with min < max.
+std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
+  std::array<double, 4> box{};
+  size_t start = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    const size_t comma = k < 3 ? v.find(',', start) : v.size();
+    if (comma == std::string::npos || (k == 3 && v.find(',', start) != std::string::npos))
+      throw_invalid(flag, "expects xmin,ymin,xmax,ymax (got " + quote_input(v) + ")");
+    box[k] = number(flag, v.substr(start, comma - start));
+    start = comma + 1;
+  }
+  if (!(box[0] < box[2] && box[1] < box[3]))
+    throw_invalid(flag, "needs xmin < xmax and ymin < ymax (got " + quote_input(v) + ")");
+  return box;
+}
+
 }  // namespace
 
 CliOptions parse_cli(const std::vector<std::string>& args) {
@@ -102,7 +118,26 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       const auto comma = v.find(',');
       if (comma == std::string::npos) throw_invalid(a, "expects W,H (got '" + v + "')");
       o.rectangle = {number(a, v.substr(0, comma)), number(a, v.substr(comma + 1))};
-    } else if (a == "--state")
+    } else if (a == "--import")
+      o.gis.path = next();
+    else if (a == "--layer")
+      o.gis.layer = next();
+    else if (a == "--where")
+      o.gis.where = next();
+    else if (a == "--clip")
+      o.gis.clip = clip_box(a, next());
+    else if (a == "--simplify") {
+      o.simplify = number(a, next());
+      if (!(*o.simplify > 0)) throw_invalid(a, "must be > 0 (a tolerance of F times h0)");
+    } else if (a == "--from-crs")
+      o.gis.from_crs = next();
+    else if (a == "--to-crs")
+      o.gis.to_crs = next();
+    else if (a == "--import-name")
+      o.import_name = next();
+    else if (a == "--subtract-from-clip")
+      o.subtract_from_clip = true;
+    else if (a == "--state")
       o.state = next();
     else if (!a.empty() && a[0] == '-')
       throw_invalid(a, "unknown flag; see meshctl --help");
@@ -137,6 +172,21 @@ Request (a text-format meshd.v1.MeshRequest file, or flags for simple shapes):
   --hole R                       minus a disk of radius R at the centre
   --h0 H                         edge length (required with the shape flags)
   --seed N
+Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file, via GDAL):
+  --import FILE            the layer as a shape: the union of its polygons, holes subtracted.
+                           Alone (with --h0) it is the geometry; with a request file it fills
+                           each placeholder there: a shape with only a name (the group name)
+  --layer NAME             the layer (default the first)
+  --where EXPR             OGR SQL attribute filter, e.g. "name = 'Isla Grande'"
+  --clip XMIN,YMIN,XMAX,YMAX   clip to this box, in the output CRS
+  --subtract-from-clip     the geometry is the clip box minus the import (the sea round land)
+  --simplify F             simplify, keeping topology, to a tolerance of F * h0; rings of
+                           less area than the tolerance squared are dropped and counted
+  --to-crs CRS             output CRS (EPSG:NNNN, WKT, PROJ); default: the UTM zone of the
+                           data's centre for data in degrees, else the file's CRS; 'none' keeps
+                           the coordinates as they are
+  --from-crs CRS           the data's CRS where the file has none (or a wrong one)
+  --import-name NAME       boundary-group name of the import (default the layer's name)
 Job options (override the file's):
   --backend auto|gpu|cpu  --priority P (-10..10)  --label TEXT
 )";
@@ -153,7 +203,12 @@ Job options (override the file's):
            "\nExamples:\n"
            "  meshctl generate examples/g2_square_hole.textproto -o g2.msh -o g2.svg\n"
            "  meshctl generate --circle 1 --h0 0.05 -o disk.vtu --backend cpu\n"
-           "  meshctl generate examples/g1_disk.textproto --frames frames/ --json\n";
+           "  meshctl generate examples/g1_disk.textproto --frames frames/ --json\n"
+           "  meshctl generate --import examples/gis/island.geojson --h0 500 -o island.msh\n"
+           "  meshctl generate --import coast.gpkg --layer land --subtract-from-clip \\\n"
+           "      --clip 290000,4385000,390000,4460000 --simplify 0.5 --h0 500 -o sea.msh\n"
+           "  meshctl generate examples/gis/island_ocean.textproto \\\n"
+           "      --import examples/gis/island.geojson -o ocean.msh\n";
   }
   if (command == "submit") {
     return "usage: meshctl submit [REQUEST.textproto] [flags]\n\n"

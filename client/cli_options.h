@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "client/connection.h"
+#include "client/gis_import.h"
 
 namespace meshd::cli {
 
@@ -29,6 +30,12 @@ struct CliOptions {
   std::optional<double> circle, hole, h0;
   std::optional<std::pair<double, double>> rectangle;
   std::optional<uint64_t> seed;
+  // An imported outline (--import FILE and its flags); gis.simplify_tolerance stays 0 here:
+  // build_request sets it to simplify * h0.
+  GisImportOptions gis;
+  std::optional<double> simplify;   // --simplify F: tolerance F * h0
+  std::string import_name;          // --import-name; empty: the layer's name
+  bool subtract_from_clip = false;  // --subtract-from-clip: the geometry is the clip box minus it
   // list
   std::string state;
 };

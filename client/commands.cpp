@@ -91,6 +91,14 @@ int follow(grpc::ClientReaderInterface<v1::MeshEvent>& reader, const CliOptions&
   return code;
 }
 
+// build_request, with what an import brought in said on stderr (stdout stays the events').
+v1::MeshRequest checked_request(const CliOptions& o) {
+  std::string import_summary;
+  v1::MeshRequest request = build_request(o, &import_summary);
+  if (!import_summary.empty()) std::fprintf(stderr, "meshctl: %s\n", import_summary.c_str());
+  return request;
+}
+
 v1::JobRef job_ref(const CliOptions& o) {
   if (o.args.size() != 1) throw_invalid("JOB_ID", "give one job id");
   v1::JobRef ref;
@@ -150,7 +158,7 @@ int run_command(const CliOptions& o) {
     auto context = connection.context();
     if (o.command == "health") return health(connection, o.json);
     if (o.command == "generate") {
-      const v1::MeshRequest request = build_request(o);
+      const v1::MeshRequest request = checked_request(o);
       for (const auto& path : o.outputs) {  // a bad -o fails before the job, not after
         if (o.format.empty()) format_from_path(path, "-o");
       }
@@ -160,7 +168,7 @@ int run_command(const CliOptions& o) {
     }
     if (o.command == "submit") {
       v1::JobRef ref;
-      const grpc::Status status = stub->Submit(context.get(), build_request(o), &ref);
+      const grpc::Status status = stub->Submit(context.get(), checked_request(o), &ref);
       if (!status.ok()) return report(status, o.json);
       if (o.json)
         std::printf("{\"job_id\":\"%s\"}\n", ref.job_id().c_str());

@@ -1,5 +1,10 @@
 #include "client/simple_request.h"
 
+#include <cctype>
+#include <utility>
+
+#include "client/gis_import.h"
+#include "client/imported_shape.h"
 #include "client/request_file.h"
 #include "core/common/error.h"
 
@@ -31,14 +36,97 @@ v1::Shape shape_from_flags(const CliOptions& o) {
   return shape;
 }
 
+// The default boundary-group name: the layer's name with what a group name may not hold
+// replaced by '_', at most 64 characters.
+std::string group_name(const std::string& layer) {
+  std::string name = layer.substr(0, 64);
+  for (char& c : name) {
+    const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    if (!ok) c = '_';
+  }
+  return name.empty() ? "imported" : name;
+}
+
+// The import flags without --import are a mistake, not something to ignore.
+void check_no_import_flags(const CliOptions& o) {
+  const std::pair<bool, const char*> flags[] = {
+      {!o.gis.layer.empty(), "--layer"},         {!o.gis.where.empty(), "--where"},
+      {o.gis.clip.has_value(), "--clip"},        {o.simplify.has_value(), "--simplify"},
+      {!o.gis.from_crs.empty(), "--from-crs"},   {!o.gis.to_crs.empty(), "--to-crs"},
+      {!o.import_name.empty(), "--import-name"}, {o.subtract_from_clip, "--subtract-from-clip"}};
+  for (const auto& [given, flag] : flags) {
+    if (given) throw_invalid(flag, "only with --import FILE");
+  }
+}
+
+// --import: the imported shape becomes the geometry (or the clip box minus it), or fills the
+// request file's placeholders.
+void import_into(const CliOptions& o, v1::MeshRequest& request, std::string* summary) {
+  if (o.subtract_from_clip && !o.gis.clip)
+    throw_invalid("--subtract-from-clip", "needs --clip xmin,ymin,xmax,ymax");
+  if (o.subtract_from_clip && !o.args.empty()) {
+    throw_invalid("--subtract-from-clip",
+                  "only without a request file (a request file places the import with "
+                  "placeholders)");
+  }
+  GisImportOptions gis = o.gis;
+  if (o.simplify) {
+    if (!(request.h0() > 0)) throw_invalid("--simplify", "needs h0 (--h0 or the request file's)");
+    gis.simplify_tolerance = *o.simplify * request.h0();
+  }
+  const ImportedLayer layer = import_polygons(gis);
+  const std::string name = o.import_name.empty() ? group_name(layer.layer) : o.import_name;
+  const v1::Shape shape = imported_shape(layer, name);
+  if (o.args.empty()) {
+    if (!o.subtract_from_clip) {
+      *request.mutable_geometry() = shape;
+    } else {
+      auto* difference = request.mutable_geometry()->mutable_difference();
+      v1::Shape* box = difference->mutable_base();
+      auto* r = box->mutable_rectangle();
+      r->mutable_min()->set_x((*o.gis.clip)[0]);
+      r->mutable_min()->set_y((*o.gis.clip)[1]);
+      r->mutable_max()->set_x((*o.gis.clip)[2]);
+      r->mutable_max()->set_y((*o.gis.clip)[3]);
+      box->set_name("clip");
+      *difference->add_subtract() = shape;
+    }
+  } else if (replace_placeholders(request, name, shape) == 0) {
+    throw_invalid("request", o.args[0] + " has no placeholder for the import: a shape with only " +
+                                 "name: \"" + name + "\" (no kind) where the outline goes");
+  }
+  if (summary != nullptr) {
+    size_t holes = 0;
+    for (const auto& p : layer.polygons) holes += p.holes.size();
+    auto count = [](size_t n, const char* what) {
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    *summary = "imported " + count(layer.polygons.size(), "polygon") + " (" + count(holes, "hole") +
+               ", " + std::to_string(layer.vertices()) + " vertices) of " +
+               count(static_cast<size_t>(layer.features), "feature") + " from " + o.gis.path +
+               ", layer '" + layer.layer + "', as group '" + name + "' in " + layer.crs;
+    if (layer.dropped_rings > 0) {
+      *summary += "; dropped " + std::to_string(layer.dropped_rings) +
+                  " degenerate rings (fewer than 3 distinct vertices, or no more area than the "
+                  "simplification tolerance squared)";
+    }
+  }
+}
+
 }  // namespace
 
-v1::MeshRequest build_request(const CliOptions& o) {
+v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) {
+  const bool importing = !o.gis.path.empty();
+  if (!importing) check_no_import_flags(o);
   const bool shape = o.circle || o.rectangle;
+  if (importing && shape)
+    throw_invalid("--import", "give --import or --circle/--rectangle, not both");
+  if (importing && o.args.size() > 1)
+    throw_invalid("request", "give at most one request file with --import");
   if (o.circle && o.rectangle) throw_invalid("--circle", "give --circle or --rectangle, not both");
   if (shape && !o.args.empty())
     throw_invalid("request", "give a request file or shape flags, not both");
-  if (!shape && o.args.size() != 1) {
+  if (!shape && !importing && o.args.size() != 1) {
     throw_invalid("request",
                   "give one request file (REQUEST.textproto) or a shape (--circle R --h0 H)");
   }
@@ -46,11 +134,14 @@ v1::MeshRequest build_request(const CliOptions& o) {
   if (shape) {
     if (!o.h0) throw_invalid("--h0", "required with --circle or --rectangle");
     *request.mutable_geometry() = shape_from_flags(o);
-  } else {
+  } else if (!o.args.empty()) {
     request = read_request_file(o.args[0]);
-    if (o.hole) throw_invalid("--hole", "only with --circle or --rectangle");
+  } else if (!o.h0) {
+    throw_invalid("--h0", "required with --import when no request file is given");
   }
+  if (!shape && o.hole) throw_invalid("--hole", "only with --circle or --rectangle");
   if (o.h0) request.set_h0(*o.h0);
+  if (importing) import_into(o, request, import_summary);
   if (o.seed) request.set_seed(*o.seed);
   v1::JobOptions& job = *request.mutable_options();
   if (o.backend) {

@@ -208,6 +208,22 @@ def test_output_file_error(c):
     assert "cannot create" in r.stderr, r.stderr
 
 
+def test_import(c):
+    """--import of examples/gis/: the island alone, the sea round it from the example request, and
+    a bad filter (exit 2, the flag named)."""
+    island = c.example(os.path.join("gis", "island.geojson"))
+    r = c.expect(OK, "generate", "--import", island, "--h0", "800", "-o", "island.vtu")
+    assert "imported 3 polygons" in r.stderr and "UTM zone 25N" in r.stderr, r.stderr
+    nodes = summary_nodes(r.stdout)
+    read = meshio_nodes(c.path("island.vtu"))
+    assert read in (None, nodes), f"meshio read {read} nodes, summary {nodes}"
+    r = c.expect(OK, "generate", c.example(os.path.join("gis", "island_ocean.textproto")),
+                 "--import", island, "--h0", "1000", "-o", "sea.msh")
+    print(f"  island {nodes} nodes, sea {summary_nodes(r.stdout)} nodes")
+    r = c.expect(BAD_REQUEST, "generate", "--import", island, "--h0", "800", "--where", "x >")
+    assert "--where:" in r.stderr and "island.geojson" in r.stderr, r.stderr
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -235,7 +251,7 @@ def test_not_serving_while_draining(c):
 TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test_bad_request,
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
-         test_output_file_error, test_help, test_not_serving_while_draining]
+         test_output_file_error, test_import, test_help, test_not_serving_while_draining]
 
 
 def main():
