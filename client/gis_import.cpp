@@ -385,15 +385,6 @@ OGRLayer& pick_layer(GDALDataset& data, const GisImportOptions& o) {
 
 }  // namespace
 
-int64_t ImportedLayer::vertices() const {
-  int64_t n = 0;
-  for (const ImportedPolygon& p : polygons) {
-    n += static_cast<int64_t>(p.outer.size());
-    for (const auto& hole : p.holes) n += static_cast<int64_t>(hole.size());
-  }
-  return n;
-}
-
 int utm_zone(double lon_deg) {
   const double lon = std::fmod(std::fmod(lon_deg + 180.0, 360.0) + 360.0, 360.0);  // [0, 360)
   return std::clamp(static_cast<int>(std::floor(lon / 6.0)) + 1, 1, 60);

@@ -2,6 +2,16 @@
 
 namespace meshd::cli {
 
+// Here rather than in gis_import.cpp, which a build without GDAL leaves out.
+int64_t ImportedLayer::vertices() const {
+  int64_t n = 0;
+  for (const ImportedPolygon& p : polygons) {
+    n += static_cast<int64_t>(p.outer.size());
+    for (const auto& hole : p.holes) n += static_cast<int64_t>(hole.size());
+  }
+  return n;
+}
+
 namespace {
 
 void set_polygon(const std::vector<Vec2>& ring, v1::Shape& shape) {

@@ -3,7 +3,7 @@
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
 # the overhead), and many small jobs through meshd (throughput). Logs go to $OUT (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|service|throughput]...
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|service|throughput]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -75,6 +75,19 @@ for step in "${steps[@]}"; do
       for n in 20000 100000 1000000; do
         $run meshbench --backend cpu --nodes $n $req 2>&1 | tee -a "$out/bench_cpu.log"
       done ;;
+    primitives)
+      # Trees of many shapes and long polygons (bench/many_primitives.py) at equal node counts,
+      # GPU and CPU (all cores) on the same host: what the spatial indexes keep per iteration.
+      dir=$(mktemp -d)
+      python3 "$here/bench/many_primitives.py" "$dir"
+      reqs="$dir/holes_10.textproto $dir/holes_100.textproto $dir/holes_1000.textproto
+            $dir/holes_10000.textproto $dir/ragged_1000.textproto $dir/ragged_100000.textproto
+            $dir/ragged_1000000.textproto"
+      for n in 200000 1000000; do
+        $run meshbench --backend gpu --nodes $n $reqs 2>&1 | tee -a "$out/bench_primitives_gpu.log"
+      done
+      $run meshbench --backend cpu --nodes 200000 $reqs 2>&1 | tee -a "$out/bench_primitives_cpu.log"
+      rm -rf "$dir" ;;
     service)
       $run server_gpu_service_test 2>&1 | tee "$out/gpu_service_tests.log" | tail -6
       # meshd on its defaults (a GPU worker, a CPU worker) and meshctl through it.
