@@ -17,7 +17,7 @@
 
 namespace meshd {
 
-constexpr int kMaxBvhDepth = 48;
+constexpr int kMaxBvhDepth = 32;
 
 struct BvhNode {
   Box box;

@@ -198,15 +198,18 @@ class Emitter {
     program_.code.push_back({Op::kUnionIndexed, 0, -1});
     std::vector<BvhItem> operands;
     int need = 0;
+    bool shallow = true;
     for (auto it = first; it != last; ++it) {
       const auto begin = static_cast<uint32_t>(program_.code.size());
-      need = std::max(need, (it == first ? 0 : 1) + emit(*it, t));
+      const int own = emit(*it, t);
+      shallow = shallow && own <= kMaxIndexedOperandStack;
+      need = std::max(need, (it == first ? 0 : 1) + own);
       const auto end = static_cast<uint32_t>(program_.code.size());
       operands.push_back({distance_bound_box(program_, begin, end), begin, end});
       if (it != first) program_.code.push_back({Op::kMin, 0, -1});
     }
     program_.code[head].operand = static_cast<uint32_t>(program_.code.size());
-    program_.code[head].bvh = build_bvh(std::move(operands), program_.nodes);
+    if (shallow) program_.code[head].bvh = build_bvh(std::move(operands), program_.nodes);
     return need;
   }
 

@@ -12,7 +12,8 @@
 //   - a polygon of many vertices carries a tree over runs of its edges (Instruction::bvh);
 //   - a union of many operands (and the subtrahends of a difference of many) is preceded by a
 //     kUnionIndexed instruction whose tree has one leaf per operand, covering that operand's
-//     instructions. The ordinary left fold of the operands follows it, so a reader that skips
+//     instructions (kNoBvh where an operand needs more than kMaxIndexedOperandStack slots).
+//     The ordinary left fold of the operands follows it, so a reader that skips
 //     kUnionIndexed (the bounds, the corner search, a nested evaluation) still sees the whole
 //     union; the evaluator instead visits the operands near the point and jumps to `operand`,
 //     the instruction after the fold.
@@ -34,6 +35,10 @@
 namespace meshd {
 
 constexpr int kMaxProgramStack = 40;
+// The stack of one operand of an indexed union: small, so that the nested evaluations cost the
+// device little local memory. A union with a deeper operand keeps kUnionIndexed without a tree
+// (bvh == kNoBvh), and its fold runs.
+constexpr int kMaxIndexedOperandStack = 8;
 
 enum class Op : uint32_t {
   kCircle,

@@ -115,10 +115,13 @@ MESHD_HD inline double sdf_primitive(ProgramView prog, const Instruction& ins, V
 }
 
 // How many kUnionIndexed levels the evaluator follows through its index; deeper ones run their
-// plain fold. A template parameter rather than recursion, which device code would pay for.
-constexpr int kIndexedUnionLevels = 2;
+// plain fold. A template parameter rather than recursion, which device code would pay for; one
+// level, because every level inlines another evaluator into each kernel (on an H100, a second
+// level took the step kernels from 86 to 110 registers and slowed G5 at 1M by about a quarter;
+// with one level, G1-G5 and the examples ran as fast as with no index at all).
+constexpr int kIndexedUnionLevels = 1;
 
-template <int kLevels>
+template <int kLevels, int kStack = kMaxProgramStack>
 MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p, int* owner);
 
 // The union that the kUnionIndexed instruction `ins` opens: the smallest operand value, from
@@ -140,7 +143,8 @@ MESHD_HD double eval_union_indexed(ProgramView prog, const Instruction& ins, Vec
     if (d2 > 0.0 && (best <= 0.0 || d2 > best * best)) continue;
     if (node.leaf) {
       int who = -1;
-      const double value = eval_program<kLevels>(prog, node.first, node.last, p, &who);
+      const double value =
+          eval_program<kLevels, kMaxIndexedOperandStack>(prog, node.first, node.last, p, &who);
       if (value < best || (value == best && node.first < best_first)) {
         best = value;
         best_first = node.first;
@@ -167,10 +171,10 @@ MESHD_HD double eval_union_indexed(ProgramView prog, const Instruction& ins, Vec
 // Signed distance of the program's instructions [begin, end) at p, following kLevels levels of
 // indexed unions. When `owner` is not null it receives the index of the primitive whose
 // distance the result is (the boundary it is nearest to), which tags boundary edges.
-template <int kLevels>
+template <int kLevels, int kStack>
 MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p, int* owner) {
-  double value[kMaxProgramStack];
-  int who[kMaxProgramStack];
+  double value[kStack];
+  int who[kStack];
   int top = -1;
   for (uint32_t i = begin; i < end; ++i) {
     const Instruction ins = prog.code[i];
@@ -194,11 +198,12 @@ MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec
         break;
       case Op::kUnionIndexed:
         if constexpr (kLevels > 0) {
+          if (ins.bvh == kNoBvh) break;
           ++top;
           value[top] = eval_union_indexed<kLevels - 1>(prog, ins, p, &who[top]);
           i = ins.operand - 1;
         }
-        break;  // with no level left, the fold that follows computes the same union
+        break;  // with no level or no tree, the fold that follows computes the same union
       default:
         ++top;
         value[top] = sdf_primitive(prog, ins, p);

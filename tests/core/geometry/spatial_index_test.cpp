@@ -196,7 +196,8 @@ TEST(IndexedUnion, DifferenceOfManyHolesMatchesTheFold) {
 }
 
 TEST(IndexedUnion, IslandsWithLakesNestTwoLevels) {
-  // A union of islands, each a disk minus many lakes: the outer index, and one per island.
+  // A union of islands, each a disk minus many lakes: the outer index, and one per island,
+  // whose fold runs below the level the evaluator follows.
   std::vector<Shape> islands;
   for (int i = 0; i < 9; ++i) {
     const Vec2 c{1.7 + 3.3 * (i % 3), 1.7 + 3.3 * (i / 3)};
