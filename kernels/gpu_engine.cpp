@@ -118,6 +118,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<Instruction> geometry_code, size_code;
   DeviceBuffer<double> geometry_params, size_params;
   DeviceBuffer<BvhNode> geometry_nodes, size_nodes;
+  DeviceBuffer<float> geometry_samples, size_samples;
   DeviceBuffer<SizeTermCode> size_terms;
   ProgramView fd{};
   SizeView fh{};
@@ -169,11 +170,13 @@ struct GpuEngine::Impl {
     size_params.upload(prob.size.shapes.params.data(), prob.size.shapes.params.size(), stream);
     geometry_nodes.upload(prob.geometry.nodes.data(), prob.geometry.nodes.size(), stream);
     size_nodes.upload(prob.size.shapes.nodes.data(), prob.size.shapes.nodes.size(), stream);
+    geometry_samples.upload(prob.geometry.samples.data(), prob.geometry.samples.size(), stream);
+    size_samples.upload(prob.size.shapes.samples.data(), prob.size.shapes.samples.size(), stream);
     size_terms.upload(prob.size.terms.data(), prob.size.terms.size(), stream);
     fd = {geometry_code.data(), static_cast<uint32_t>(prob.geometry.code.size()),
-          geometry_params.data(), geometry_nodes.data()};
+          geometry_params.data(), geometry_nodes.data(), geometry_samples.data()};
     fh = {{size_code.data(), static_cast<uint32_t>(prob.size.shapes.code.size()),
-           size_params.data(), size_nodes.data()},
+           size_params.data(), size_nodes.data(), size_samples.data()},
           size_terms.data(),
           static_cast<uint32_t>(prob.size.terms.size())};
     uniform = prob.size.uniform();

@@ -18,6 +18,8 @@
 //     union; the evaluator instead visits the operands near the point and jumps to `operand`,
 //     the instruction after the fold.
 //
+// Gridded data (regular_grid.h) keeps its header in `params` and its values in `samples`.
+//
 // Parameter layout in `params`, starting at Instruction::operand:
 //   kCircle     cx cy r
 //   kBox        cx cy hx hy cos sin          (half extents in the box's own rotated frame)
@@ -74,16 +76,19 @@ struct ProgramView {
   uint32_t size;
   const double* params;
   const BvhNode* nodes;
+  const float* samples;
 };
 
 struct Program {
   std::vector<Instruction> code;
   std::vector<double> params;
   std::vector<BvhNode> nodes;
+  std::vector<float> samples;  // gridded data, regular_grid.h
   std::vector<PrimitiveInfo> primitives;
 
   ProgramView view() const {
-    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), nodes.data()};
+    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), nodes.data(),
+            samples.data()};
   }
 };
 
