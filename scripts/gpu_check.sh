@@ -3,7 +3,7 @@
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
 # the overhead), and many small jobs through meshd (throughput). Logs go to $OUT (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|service|throughput]...
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -86,7 +86,13 @@ for step in "${steps[@]}"; do
       for n in 200000 1000000; do
         $run meshbench --backend gpu --nodes $n $reqs 2>&1 | tee -a "$out/bench_primitives_gpu.log"
       done
-      $run meshbench --backend cpu --nodes 200000 $reqs 2>&1 | tee -a "$out/bench_primitives_cpu.log"
+      rm -rf "$dir" ;;
+    primitives_cpu)
+      # The same on the host's CPU cores (minutes: the long polygons at 200k nodes).
+      dir=$(mktemp -d)
+      python3 "$here/bench/many_primitives.py" "$dir"
+      $run meshbench --backend cpu --nodes 200000 "$dir"/holes_*.textproto "$dir"/ragged_*.textproto \
+        2>&1 | tee -a "$out/bench_primitives_cpu.log"
       rm -rf "$dir" ;;
     service)
       $run server_gpu_service_test 2>&1 | tee "$out/gpu_service_tests.log" | tail -6
