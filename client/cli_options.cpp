@@ -11,8 +11,8 @@ namespace meshd::cli {
 
 namespace {
 
-const std::set<std::string> kCommands = {"generate", "submit", "watch",  "cancel",
-                                         "status",   "list",   "health", "help"};
+const std::set<std::string> kCommands = {"generate", "submit", "request", "watch", "cancel",
+                                         "status",   "list",   "health",  "help"};
 
 double number(const std::string& flag, const std::string& v) {
   char* end = nullptr;
@@ -218,6 +218,15 @@ Job options (override the file's):
            "\nExample:\n  id=$(meshctl submit examples/g1_disk.textproto) && meshctl watch $id -o "
            "g1.msh\n";
   }
+  if (command == "request") {
+    return "usage: meshctl request [REQUEST.textproto] [flags] [-o FILE]\n\n"
+           "Writes the request that generate would send, in text format, to FILE or stdout,\n"
+           "without a server: an import or the shape flags kept as a request file to edit,\n"
+           "rerun or benchmark (meshbench reads it).\n" +
+           request_flags +
+           "\nExample:\n  meshctl request --import coast.gpkg --subtract-from-clip \\\n"
+           "      --clip 290000,4385000,390000,4460000 --h0 500 -o sea.textproto\n";
+  }
   if (command == "watch") {
     return "usage: meshctl watch JOB_ID [-o FILE]... [--frames DIR]\n\n"
            "Streams a job's events from the start (a finished job: its result at once) and\n"
@@ -251,6 +260,7 @@ The command-line client of meshd, the DistMesh mesh service.
 Commands:
   generate [REQUEST]   mesh a request, show progress, write the mesh (-o FILE)
   submit [REQUEST]     queue a request, print its job id
+  request [REQUEST]    write the request generate would send (no server needed)
   watch JOB_ID         stream a job's events and write its mesh
   cancel JOB_ID        cancel a job
   status JOB_ID        show a job

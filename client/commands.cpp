@@ -1,9 +1,13 @@
 #include "client/commands.h"
 
+#include <google/protobuf/text_format.h>
 #include <google/protobuf/util/json_util.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <memory>
 
 #include "client/event_view.h"
@@ -99,6 +103,29 @@ v1::MeshRequest checked_request(const CliOptions& o) {
   return request;
 }
 
+// meshctl request: the request generate would send, in text format, to -o FILE or stdout, so
+// that an import or the shape flags can be kept, edited and rerun (by meshctl or meshbench).
+int write_request(const CliOptions& o) {
+  if (o.outputs.size() > 1) throw_invalid("-o", "request writes one file (got " +
+                                                    std::to_string(o.outputs.size()) + ")");
+  std::string text =
+      "# proto-file: meshd/v1/request.proto\n# proto-message: meshd.v1.MeshRequest\n";
+  std::string body;
+  google::protobuf::TextFormat::PrintToString(checked_request(o), &body);
+  text += body;
+  if (o.outputs.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    return kExitOk;
+  }
+  std::ofstream out(o.outputs[0], std::ios::binary);
+  if (!(out << text) || !out.flush()) {
+    std::fprintf(stderr, "meshctl: -o: cannot write '%s': %s\n", o.outputs[0].c_str(),
+                 std::strerror(errno));
+    return kExitBadResult;
+  }
+  return kExitOk;
+}
+
 v1::JobRef job_ref(const CliOptions& o) {
   if (o.args.size() != 1) throw_invalid("JOB_ID", "give one job id");
   v1::JobRef ref;
@@ -153,6 +180,7 @@ int health(const Connection& connection, bool json) {
 
 int run_command(const CliOptions& o) {
   try {
+    if (o.command == "request") return write_request(o);
     const Connection connection(o.connection);
     auto stub = v1::MeshService::NewStub(connection.channel());
     auto context = connection.context();

@@ -224,6 +224,20 @@ def test_import(c):
     assert "--where:" in r.stderr and "island.geojson" in r.stderr, r.stderr
 
 
+def test_request(c):
+    """meshctl request writes the request generate would send, with no server there; meshing
+    that file gives the mesh the flags give."""
+    shape = ("--circle", "1", "--hole", "0.3", "--h0", "0.1", "--seed", "7")
+    c.expect(OK, "request", *shape, "-o", "annulus.textproto", server="127.0.0.1:1")
+    r = c.expect(OK, "request", *shape, server="127.0.0.1:1")
+    assert "proto-message: meshd.v1.MeshRequest" in r.stdout and "h0: 0.1" in r.stdout, r.stdout
+    from_flags = summary_nodes(c.expect(OK, "generate", *shape).stdout)
+    from_file = summary_nodes(c.expect(OK, "generate", c.path("annulus.textproto")).stdout)
+    assert from_flags == from_file, f"flags {from_flags} nodes, file {from_file}"
+    r = c.expect(BAD_REQUEST, "request", *shape, "-o", "a.textproto", "-o", "b.textproto")
+    assert "-o:" in r.stderr, r.stderr
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -251,7 +265,8 @@ def test_not_serving_while_draining(c):
 TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test_bad_request,
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
-         test_output_file_error, test_import, test_help, test_not_serving_while_draining]
+         test_output_file_error, test_import, test_request, test_help,
+         test_not_serving_while_draining]
 
 
 def main():
