@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/geometry/regular_grid.h"
+
 namespace meshd {
 namespace {
 
@@ -33,6 +35,17 @@ Box primitive_box(Op op, const double* q) {
         b.max = {std::max(b.max.x, q[1 + 2 * i]), std::max(b.max.y, q[2 + 2 * i])};
       }
       return b;
+    }
+    case Op::kGrid: {
+      // The grid's box mapped from its own frame to the world's (program.h): a rotated box.
+      const double* t = q + kGridParams;
+      const double hx = 0.5 * t[4] * (q[4] - 1) * q[2], hy = 0.5 * t[4] * (q[5] - 1) * q[3];
+      const double cx = q[0] + 0.5 * (q[4] - 1) * q[2], cy = q[1] + 0.5 * (q[5] - 1) * q[3];
+      const double c = t[2], s = t[3];
+      const Vec2 center{t[0] + t[4] * (c * cx - s * cy), t[1] + t[4] * (s * cx + c * cy)};
+      const double ex = std::fabs(c) * hx + std::fabs(s) * hy;
+      const double ey = std::fabs(s) * hx + std::fabs(c) * hy;
+      return {{center.x - ex, center.y - ey}, {center.x + ex, center.y + ey}};
     }
     default:  // a half-plane is unbounded
       return kWholePlane;

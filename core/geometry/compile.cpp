@@ -9,6 +9,7 @@
 
 #include "core/common/error.h"
 #include "core/geometry/bounds.h"
+#include "core/geometry/regular_grid.h"
 
 namespace meshd {
 namespace {
@@ -135,6 +136,31 @@ class Emitter {
     info.corners = std::move(corners);
     program_.code.push_back(
         {Op::kPolygon, offset, static_cast<int32_t>(program_.primitives.size()), bvh});
+    program_.primitives.push_back(std::move(info));
+    return 1;
+  }
+
+  // A grid's samples cannot move, so it keeps its own frame and the similarity that places it
+  // follows its header (program.h); the evaluator maps each point into the grid's frame
+  // (grid_sdf.cuh). Its box's corners, where they lie on the final boundary, are the domain's.
+  int emit_node(const Shape& s, const DistanceGrid& g, const Similarity& t) {
+    const Vec2 far{g.origin.x + (g.nx - 1) * g.spacing.x, g.origin.y + (g.ny - 1) * g.spacing.y};
+    check_folded(s, {t.offset.x, t.offset.y}, {t.scale * g.spacing.x, t.scale * g.spacing.y});
+    std::vector<double> corners;
+    for (Vec2 v : {g.origin, Vec2{far.x, g.origin.y}, far, Vec2{g.origin.x, far.y}}) {
+      const Vec2 w = apply(t, v);
+      check_folded(s, {w.x, w.y});
+      corners.insert(corners.end(), {w.x, w.y});
+    }
+    PrimitiveInfo info;
+    info.name =
+        s.name.empty() ? "distance_grid" + std::to_string(++default_index_["grid"]) : s.name;
+    info.path = s.path;
+    info.corners = std::move(corners);
+    const uint32_t offset = append_grid(program_, g.origin, g.spacing, g.nx, g.ny, g.values.data());
+    program_.params.insert(program_.params.end(),
+                           {t.offset.x, t.offset.y, std::cos(t.angle), std::sin(t.angle), t.scale});
+    program_.code.push_back({Op::kGrid, offset, static_cast<int32_t>(program_.primitives.size())});
     program_.primitives.push_back(std::move(info));
     return 1;
   }

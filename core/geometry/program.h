@@ -5,7 +5,8 @@
 // kMin and kMax pop two values and push one; kNegate flips the top. A well-formed program
 // leaves exactly one value and never needs more than kMaxProgramStack slots (the compiler
 // checks both). Transforms are similarities, so the compiler has already folded them into the
-// primitives' parameters: every primitive distance is exact, and evaluation needs no matrices.
+// primitives' parameters: every analytic primitive distance is exact (a sampled grid's is as exact
+// as its data), and evaluation needs no matrices.
 //
 // Spatial indexes (bvh.h) make large geometries cost about what small ones do, without
 // changing a single distance:
@@ -26,6 +27,10 @@
 //   kEllipse    cx cy a b cos sin            (semi axes in the ellipse's own rotated frame)
 //   kHalfPlane  nx ny c                      (unit normal; inside where n.p <= c)
 //   kPolygon    n x0 y0 x1 y1 ... x(n-1) y(n-1) s   (s = +1 counter-clockwise, -1 clockwise)
+//   kGrid       <grid header, kGridParams> tx ty cos sin scale
+//               (the grid in its own frame, and the similarity that places it: world p maps to
+//               R(-angle) (p - t) / scale in the grid's frame, where the distance is scale
+//               times the grid's; grid_sdf.cuh)
 #pragma once
 
 #include <cstdint>
@@ -48,6 +53,7 @@ enum class Op : uint32_t {
   kEllipse,
   kHalfPlane,
   kPolygon,
+  kGrid,
   kMin,
   kMax,
   kNegate,
@@ -67,7 +73,8 @@ struct Instruction {
 struct PrimitiveInfo {
   std::string name;             // boundary group name
   std::string path;             // request field path, for errors
-  std::vector<double> corners;  // #C by 2 (flattened): polygon and rectangle corners, transformed
+  std::vector<double> corners;  // #C by 2 (flattened): polygon, rectangle and grid-box corners,
+                                // transformed
 };
 
 // Trivially copyable view of a program, passed by value to device code.

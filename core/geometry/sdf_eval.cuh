@@ -1,12 +1,14 @@
 // The one signed-distance evaluator, compiled by g++ for the CPU engine and by nvcc for the GPU
-// engine. Distances are exact for every primitive; CSG combinations use min / max as DistMesh
-// does (exact outside a union, a bound elsewhere).
+// engine. Distances are exact for every analytic primitive, and as exact as the data for a
+// sampled grid (grid_sdf.cuh); CSG combinations use min / max as DistMesh does (exact outside a
+// union, a bound elsewhere).
 #pragma once
 
 #include <cmath>
 
 #include "core/common/hd.h"
 #include "core/common/vec2.h"
+#include "core/geometry/grid_sdf.cuh"
 #include "core/geometry/polygon_sdf.cuh"
 #include "core/geometry/program.h"
 
@@ -109,6 +111,8 @@ MESHD_HD inline double sdf_primitive(ProgramView prog, const Instruction& ins, V
       return sdf_half_plane(q, p);
     case Op::kPolygon:
       return ins.bvh == kNoBvh ? sdf_polygon(q, p) : sdf_polygon_indexed(q, prog.nodes, ins.bvh, p);
+    case Op::kGrid:
+      return sdf_grid(prog.params, prog.samples, ins.operand, p);
     default:
       return NAN;
   }

@@ -9,6 +9,7 @@
 // compiling, or detecting corners) can still name the field.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <variant>
 #include <vector>
@@ -46,6 +47,16 @@ struct HalfPlane {
   double offset = 0.0;
 };
 
+// A signed distance sampled on a regular grid (DistMesh's dmatrix): values[j * nx + i] at
+// origin + (i * spacing.x, j * spacing.y), negative inside. The domain is where the bilinear
+// interpolant is negative, within the grid's box; its distance is as exact as the data.
+struct DistanceGrid {
+  Vec2 origin;
+  Vec2 spacing;               // > 0
+  uint32_t nx = 0, ny = 0;    // >= 2
+  std::vector<float> values;  // nx * ny, finite, row by row
+};
+
 enum class CsgOp { kUnion, kIntersection, kDifference };
 
 struct Shape;
@@ -73,7 +84,7 @@ struct Transformed {
 };
 
 struct Shape {
-  std::variant<Circle, Rectangle, Polygon, Ellipse, HalfPlane, Csg, Transformed> node;
+  std::variant<Circle, Rectangle, Polygon, Ellipse, HalfPlane, DistanceGrid, Csg, Transformed> node;
   std::string name;  // boundary group name for the primitives below; may be empty
   std::string path;  // request field path, for errors
 };

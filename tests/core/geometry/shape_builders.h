@@ -1,6 +1,7 @@
 // Short builders for geometry trees in tests.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,23 @@ inline Shape ellipse(Vec2 c, double a, double b) { return Shape{Ellipse{c, a, b}
 // The half-plane dot(normal, p) <= offset.
 inline Shape half_plane(Vec2 normal, double offset, std::string name = "") {
   return Shape{HalfPlane{normal, offset}, std::move(name), ""};
+}
+
+// A distance grid of nx by ny samples of f, row by row from `origin`, `h` apart both ways.
+inline Shape distance_grid(const std::function<double(Vec2)>& f, Vec2 origin, double h, uint32_t nx,
+                           uint32_t ny, std::string name = "") {
+  DistanceGrid g{origin, {h, h}, nx, ny, {}};
+  g.values.reserve(size_t(nx) * ny);
+  for (uint32_t j = 0; j < ny; ++j)
+    for (uint32_t i = 0; i < nx; ++i)
+      g.values.push_back(static_cast<float>(f({origin.x + i * h, origin.y + j * h})));
+  return Shape{std::move(g), std::move(name), ""};
+}
+
+// The unit disk's distance |p| - 1 on a grid over [-1.5, 1.5]^2, h = 3 / (n - 1).
+inline Shape disk_grid(uint32_t n, std::string name = "") {
+  return distance_grid([](Vec2 p) { return norm(p) - 1.0; }, {-1.5, -1.5}, 3.0 / (n - 1), n, n,
+                       std::move(name));
 }
 
 }  // namespace meshd::testing
