@@ -1,7 +1,6 @@
 #include "server/request_conversion.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,22 +15,14 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/geometry/polygon_checks.h"
 #include "core/mesh/mesh.h"
+#include "server/distance_grid_conversion.h"
+#include "server/field_values.h"
 
 namespace meshd {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// Messages: the value as the user wrote it (shortest round-trip text) and the allowed range.
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-std::string got(double v) { return " (got " + num(v) + ")"; }
+// Messages: the value as the user wrote it (field_values.h) and the allowed range.
 
 // An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
 std::string approx(double v) {
@@ -45,20 +36,6 @@ std::string approx(double v) {
 
 std::string at(const std::string& path, const char* field, int index) {
   return path + "." + field + "[" + std::to_string(index) + "]";
-}
-
-double finite(double v, const std::string& field) {
-  if (!std::isfinite(v)) throw_invalid(field, "must be finite" + got(v));
-  return v;
-}
-
-double positive(double v, const std::string& field) {
-  if (!(std::isfinite(v) && v > 0)) throw_invalid(field, "must be finite and > 0" + got(v));
-  return v;
-}
-
-Vec2 to_vec2(const v1::Vec2& v, const std::string& field) {
-  return {finite(v.x(), field + ".x"), finite(v.y(), field + ".y")};
 }
 
 // A box given by its corners: max above min in both coordinates.
@@ -166,6 +143,10 @@ class ShapeConverter {
         out.node = HalfPlane{normal, finite(in.half_plane().offset(), p + ".offset")};
         break;
       }
+      case v1::Shape::kDistanceGrid:
+        out.node = to_distance_grid(in.distance_grid(), path + ".distance_grid",
+                                    limits_.max_grid_samples, grid_samples_);
+        break;
       case v1::Shape::kUnion:
         out.node = csg(CsgOp::kUnion, in.union_().shapes(), path + ".union", depth, name);
         break;
@@ -223,7 +204,8 @@ class ShapeConverter {
       case v1::Shape::KIND_NOT_SET:
         throw_invalid(path,
                       "no shape kind set; set exactly one of circle, rectangle, polygon, ellipse, "
-                      "half_plane, union, intersection, difference, translate, rotate, scale");
+                      "half_plane, distance_grid, union, intersection, difference, translate, "
+                      "rotate, scale");
     }
     return out;
   }
@@ -257,6 +239,7 @@ class ShapeConverter {
   const ConversionLimits& limits_;
   const std::string root_;
   int nodes_ = 0;
+  int64_t grid_samples_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -29,6 +29,9 @@ struct ConversionLimits {
   // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well
   // inside a client's default 4 MiB message limit.
   int max_snapshot_nodes = 50'000;
+  // Samples of all the distance grids in one tree (geometry or a size term), 4 bytes each;
+  // RESOURCE_EXHAUSTED above it. The default is a 4096 x 4096 image.
+  int64_t max_grid_samples = 16'777'216;
 };
 
 // Validates `request` against the proto's documented ranges and `limits`, and converts it.

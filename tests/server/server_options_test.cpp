@@ -65,6 +65,8 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
                                  "1000",
                                  "--max-snapshot-nodes",
                                  "10",
+                                 "--max-grid-samples",
+                                 "4096",
                                  "--log-level",
                                  "debug"});
   EXPECT_EQ(o.listen, "0.0.0.0:0");
@@ -79,6 +81,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
   EXPECT_EQ(o.drain_timeout_s, 4);
   EXPECT_EQ(o.jobs.limits.max_nodes, 1000);
   EXPECT_EQ(o.jobs.limits.max_snapshot_nodes, 10);
+  EXPECT_EQ(o.jobs.limits.max_grid_samples, 4096);
   EXPECT_EQ(o.log_level, "debug");
 }
 
@@ -116,6 +119,7 @@ TEST(ServerOptions, BadValuesNameTheFlag) {
   EXPECT_EQ(refused_flag({"--queue-capacity", "many"}), "--queue-capacity");
   EXPECT_EQ(refused_flag({"--retention", "-1"}), "--retention");
   EXPECT_EQ(refused_flag({"--max-snapshot-nodes", "1000000"}), "--max-snapshot-nodes");
+  EXPECT_EQ(refused_flag({"--max-grid-samples", "3"}), "--max-grid-samples");
   EXPECT_EQ(refused_flag({"--log-level", "loud"}), "--log-level");
   EXPECT_EQ(refused_flag({"--listen"}), "--listen");
   EXPECT_EQ(refused_flag({"--bogus", "1"}), "--bogus");
