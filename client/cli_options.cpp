@@ -45,6 +45,18 @@ std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
   return box;
 }
 
+// "a,b", or with `one_allowed` a lone "a" meaning "a,a".
+std::pair<double, double> number_pair(const std::string& flag, const std::string& v,
+                                      bool one_allowed, const char* form) {
+  const auto comma = v.find(',');
+  if (comma == std::string::npos) {
+    if (!one_allowed) throw_invalid(flag, std::string("expects ") + form + " (got '" + v + "')");
+    const double a = number(flag, v);
+    return {a, a};
+  }
+  return {number(flag, v.substr(0, comma)), number(flag, v.substr(comma + 1))};
+}
+
 }  // namespace
 
 CliOptions parse_cli(const std::vector<std::string>& args) {
@@ -113,11 +125,16 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.h0 = number(a, next());
     else if (a == "--seed")
       o.seed = static_cast<uint64_t>(integer(a, next()));
-    else if (a == "--rectangle") {
-      const std::string v = next();
-      const auto comma = v.find(',');
-      if (comma == std::string::npos) throw_invalid(a, "expects W,H (got '" + v + "')");
-      o.rectangle = {number(a, v.substr(0, comma)), number(a, v.substr(comma + 1))};
+    else if (a == "--rectangle")
+      o.rectangle = number_pair(a, next(), false, "W,H");
+    else if (a == "--sdf-grid")
+      o.sdf_grid = next();
+    else if (a == "--sdf-grid-origin")
+      o.sdf_grid_origin = number_pair(a, next(), false, "X,Y");
+    else if (a == "--sdf-grid-spacing") {
+      o.sdf_grid_spacing = number_pair(a, next(), true, "D or DX,DY");
+      if (!(o.sdf_grid_spacing->first > 0 && o.sdf_grid_spacing->second > 0))
+        throw_invalid(a, "must be > 0 (the distance between samples)");
     } else if (a == "--import")
       o.gis.path = next();
     else if (a == "--layer")
@@ -172,6 +189,13 @@ Request (a text-format meshd.v1.MeshRequest file, or flags for simple shapes):
   --hole R                       minus a disk of radius R at the centre
   --h0 H                         edge length (required with the shape flags)
   --seed N
+Signed-distance grid (DistMesh's dmatrix: a segmented image's distance transform):
+  --sdf-grid FILE.npy      a 2-D NumPy array (float32 or float64) of signed distances,
+                           negative inside, [row j, column i] at (x0 + i dx, y0 + j dy), rows
+                           counted upwards; the domain is where its bilinear interpolant is < 0.
+                           Alone with --h0; its boundary group is named after the file
+  --sdf-grid-origin X0,Y0  where sample [0, 0] lies (default 0,0)
+  --sdf-grid-spacing D|DX,DY   the distance between samples (default 1: pixels)
 Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file, via GDAL):
   --import FILE            the layer as a shape: the union of its polygons, holes subtracted.
                            Alone (with --h0) it is the geometry; with a request file it fills
@@ -204,6 +228,7 @@ Job options (override the file's):
            "  meshctl generate examples/g2_square_hole.textproto -o g2.msh -o g2.svg\n"
            "  meshctl generate --circle 1 --h0 0.05 -o disk.vtu --backend cpu\n"
            "  meshctl generate examples/g1_disk.textproto --frames frames/ --json\n"
+           "  meshctl generate --sdf-grid blob.npy --sdf-grid-spacing 0.01 --h0 0.02 -o b.svg\n"
            "  meshctl generate --import examples/gis/island.geojson --h0 500 -o island.msh\n"
            "  meshctl generate --import coast.gpkg --layer land --subtract-from-clip \\\n"
            "      --clip 290000,4385000,390000,4460000 --simplify 0.5 --h0 500 -o sea.msh\n"

@@ -36,6 +36,9 @@ struct CliOptions {
   std::optional<double> simplify;   // --simplify F: tolerance F * h0
   std::string import_name;          // --import-name; empty: the layer's name
   bool subtract_from_clip = false;  // --subtract-from-clip: the geometry is the clip box minus it
+  // A signed-distance grid (--sdf-grid FILE.npy) placed by its origin and spacing.
+  std::string sdf_grid;
+  std::optional<std::pair<double, double>> sdf_grid_origin, sdf_grid_spacing;
   // list
   std::string state;
 };

@@ -1,11 +1,13 @@
 #include "client/simple_request.h"
 
 #include <cctype>
+#include <filesystem>
 #include <utility>
 
 #include "client/gis_import.h"
 #include "client/imported_shape.h"
 #include "client/request_file.h"
+#include "client/sdf_grid_shape.h"
 #include "core/common/error.h"
 
 namespace meshd::cli {
@@ -113,12 +115,29 @@ void import_into(const CliOptions& o, v1::MeshRequest& request, std::string* sum
   }
 }
 
+// --sdf-grid stands alone: its placing flags need it, and it takes no other geometry.
+void check_sdf_grid_flags(const CliOptions& o, bool shape, bool importing) {
+  if (o.sdf_grid.empty()) {
+    if (o.sdf_grid_origin) throw_invalid("--sdf-grid-origin", "only with --sdf-grid FILE.npy");
+    if (o.sdf_grid_spacing) throw_invalid("--sdf-grid-spacing", "only with --sdf-grid FILE.npy");
+    return;
+  }
+  if (shape || importing || !o.args.empty()) {
+    throw_invalid("--sdf-grid",
+                  "give it alone (with --h0), not with a request file, --circle, --rectangle or "
+                  "--import");
+  }
+  if (!o.h0) throw_invalid("--h0", "required with --sdf-grid");
+}
+
 }  // namespace
 
 v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) {
   const bool importing = !o.gis.path.empty();
   if (!importing) check_no_import_flags(o);
   const bool shape = o.circle || o.rectangle;
+  check_sdf_grid_flags(o, shape, importing);
+  const bool grid = !o.sdf_grid.empty();
   if (importing && shape)
     throw_invalid("--import", "give --import or --circle/--rectangle, not both");
   if (importing && o.args.size() > 1)
@@ -126,12 +145,18 @@ v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) 
   if (o.circle && o.rectangle) throw_invalid("--circle", "give --circle or --rectangle, not both");
   if (shape && !o.args.empty())
     throw_invalid("request", "give a request file or shape flags, not both");
-  if (!shape && !importing && o.args.size() != 1) {
+  if (!shape && !importing && !grid && o.args.size() != 1) {
     throw_invalid("request",
                   "give one request file (REQUEST.textproto) or a shape (--circle R --h0 H)");
   }
   v1::MeshRequest request;
-  if (shape) {
+  if (grid) {
+    // Its boundary group is named after the file, as an import's after its layer.
+    *request.mutable_geometry() =
+        sdf_grid_shape(o.sdf_grid, o.sdf_grid_origin.value_or(std::pair{0.0, 0.0}),
+                       o.sdf_grid_spacing.value_or(std::pair{1.0, 1.0}),
+                       group_name(std::filesystem::path(o.sdf_grid).stem().string()));
+  } else if (shape) {
     if (!o.h0) throw_invalid("--h0", "required with --circle or --rectangle");
     *request.mutable_geometry() = shape_from_flags(o);
   } else if (!o.args.empty()) {

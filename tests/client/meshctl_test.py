@@ -14,6 +14,7 @@ import argparse
 import contextlib
 import io
 import json
+import math
 import os
 import re
 import signal
@@ -238,6 +239,77 @@ def test_request(c):
     assert "-o:" in r.stderr, r.stderr
 
 
+def write_npy(path, rows):
+    """rows (a list of lists of floats) as a float32 .npy, written by hand: no numpy needed."""
+    import struct
+    shape = (len(rows), len(rows[0])) if rows and isinstance(rows[0], list) else (len(rows),)
+    flat = [v for row in rows for v in row] if len(shape) == 2 else rows
+    header = f"{{'descr': '<f4', 'fortran_order': False, 'shape': {shape!r}, }}"
+    header += " " * (-(10 + len(header) + 1) % 64) + "\n"
+    with open(path, "wb") as f:
+        f.write(b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode())
+        f.write(struct.pack(f"<{len(flat)}f", *flat))
+
+
+def mesh_area(path):
+    """The area of the triangles of a .vtu, through meshio; None without it."""
+    try:
+        import meshio
+    except ImportError:
+        return None
+    m = meshio.read(path)
+    p, t = m.points, m.cells_dict["triangle"]
+    return sum(0.5 * abs((p[b][0] - p[a][0]) * (p[d][1] - p[a][1]) -
+                         (p[d][0] - p[a][0]) * (p[b][1] - p[a][1])) for a, b, d in t)
+
+
+def test_sdf_grid(c):
+    """--sdf-grid: a disk of radius 0.8 sampled on a 41 x 41 grid (its area comes back), the
+    segmented-image example where numpy is at hand, and bad grids and flags (exit 2, named)."""
+    h = 0.05
+    disk = [[math.hypot(-1 + i * h, -1 + j * h) - 0.8 for i in range(41)] for j in range(41)]
+    write_npy(c.path("disk.npy"), disk)
+    r = c.expect(OK, "generate", "--sdf-grid", "disk.npy", "--sdf-grid-origin", "-1,-1",
+                 "--sdf-grid-spacing", str(h), "--h0", "0.08", "-o", "disk.vtu", "-o", "disk.svg")
+    nodes = summary_nodes(r.stdout)
+    area = mesh_area(c.path("disk.vtu"))
+    assert area is None or abs(area / (math.pi * 0.64) - 1) < 0.01, f"area {area}"
+    with open(c.path("disk.svg")) as f:
+        assert "disk" in f.read(), "the boundary group is not named after the file"
+    print(f"  disk {nodes} nodes, area {area}")
+    try:
+        import numpy  # noqa: F401
+        script = c.example(os.path.join("segmented_image", "make_sdf.py"))
+        subprocess.run([sys.executable, script, c.path("blob.npy")], check=True,
+                       capture_output=True, timeout=60)
+        r = c.expect(OK, "generate", "--sdf-grid", "blob.npy", "--sdf-grid-spacing", "0.01",
+                     "--h0", "0.04")
+        q_min = float(re.search(r"q_min ([0-9.]+)", r.stdout).group(1))
+        assert q_min > 0.5, r.stdout
+        print(f"  segmented image {summary_nodes(r.stdout)} nodes, q_min {q_min}")
+    except ImportError:
+        print("  no numpy: the segmented-image example skipped")
+
+    disk[3][5] = float("nan")
+    write_npy(c.path("nan.npy"), disk)
+    r = c.expect(BAD_REQUEST, "generate", "--sdf-grid", "nan.npy", "--h0", "0.1")
+    assert "--sdf-grid:" in r.stderr and "nan.npy" in r.stderr and "[3, 5]" in r.stderr, r.stderr
+    write_npy(c.path("line.npy"), [-1.0, 1.0, 2.0])
+    r = c.expect(BAD_REQUEST, "generate", "--sdf-grid", "line.npy", "--h0", "0.1")
+    assert "shape (3)" in r.stderr, r.stderr
+    write_npy(c.path("empty.npy"), [[1.0, 2.0], [3.0, 4.0]])  # the server's check
+    r = c.expect(BAD_REQUEST, "generate", "--sdf-grid", "empty.npy", "--h0", "0.1")
+    assert "geometry.distance_grid.values" in r.stderr and "no value < 0" in r.stderr, r.stderr
+    r = c.expect(BAD_REQUEST, "generate", "--circle", "1", "--h0", "0.1", "--sdf-grid-origin",
+                 "0,0")
+    assert "--sdf-grid-origin: only with --sdf-grid" in r.stderr, r.stderr
+    r = c.expect(BAD_REQUEST, "generate", "--sdf-grid", "disk.npy", "--circle", "1", "--h0", "1")
+    assert "--sdf-grid: give it alone" in r.stderr, r.stderr
+    r = c.expect(BAD_REQUEST, "generate", "--sdf-grid", "disk.npy", "--h0", "0.1",
+                 "--sdf-grid-spacing", "0")
+    assert "--sdf-grid-spacing: must be > 0" in r.stderr, r.stderr
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -265,7 +337,7 @@ def test_not_serving_while_draining(c):
 TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test_bad_request,
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
-         test_output_file_error, test_import, test_request, test_help,
+         test_output_file_error, test_import, test_request, test_sdf_grid, test_help,
          test_not_serving_while_draining]
 
 
