@@ -7,7 +7,8 @@
     mesh.points, mesh.triangles          # #N by 2 float64, #M by 3 int32
     mesh.to_meshio().write("ring.vtu")
 
-Geometry: circle, rectangle, polygon, ellipse, half_plane; | & - and union, intersection,
+Geometry: circle, rectangle, polygon, ellipse, half_plane, distance_grid (a numpy array of
+signed distances); | & - and union, intersection,
 difference; .translate(), .rotate(), .scale(), .named(). Size: uniform, graded. Requests:
 request(). Clients: Client and aio.Client. Events: Queued, Started, Progress, Snapshot, Done.
 Errors: MeshdError and its subclasses. The meshd.v1 messages and stubs are generated from the
@@ -21,8 +22,8 @@ from meshd.errors import (BadResult, Cancelled, DeadlineExceeded, FailedPrecondi
                           InvalidArgument, MeshdError, NotFound, PermissionDenied,
                           ResourceExhausted, Unauthenticated, Unavailable)
 from meshd.events import Done, Progress, Queued, Snapshot, Started
-from meshd.geometry import (Shape, circle, difference, ellipse, half_plane, intersection,
-                            polygon, rectangle, union)
+from meshd.geometry import (Shape, circle, difference, distance_grid, ellipse, half_plane,
+                            intersection, polygon, rectangle, union)
 from meshd.job_info import JobInfo
 from meshd.mesh import Mesh, Quality, RunStats
 from meshd.request import request
@@ -37,8 +38,8 @@ __all__ = [
     "ResourceExhausted", "FailedPrecondition", "Unauthenticated", "PermissionDenied", "Internal",
     "BadResult",
     "Queued", "Started", "Progress", "Snapshot", "Done",
-    "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "union", "intersection",
-    "difference",
+    "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "distance_grid", "union",
+    "intersection", "difference",
     "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded",
     "geometry_pb2", "mesh_pb2", "request_pb2", "service_pb2",
 ]

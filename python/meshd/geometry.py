@@ -159,6 +159,27 @@ def half_plane(normal, offset=0.0, name=None):
     return _primitive("half_plane", name, fill)
 
 
+def distance_grid(values, spacing=1.0, origin=(0.0, 0.0), name=None):
+    """A signed distance sampled on a regular grid (DistMesh's dmatrix), e.g. the distance
+    transform of a segmented image: values is #rows by #columns (a numpy array or nested lists),
+    negative inside, in the request's length unit; values[j, i] lies at
+    (origin.x + i * dx, origin.y + j * dy), rows counted upwards (np.flipud an image first).
+    spacing: d or (dx, dy), > 0. The domain is where the bilinear interpolant is negative,
+    within the grid's box."""
+    import numpy as np
+    grid = np.asarray(values, dtype=np.float32)
+    if grid.ndim != 2 or min(grid.shape) < 2:
+        raise ValueError(f"values: expected a 2-D array of at least 2 x 2, got shape {grid.shape}")
+    dx, dy = (spacing, spacing) if np.ndim(spacing) == 0 else spacing
+
+    def fill(g):
+        g.ny, g.nx = grid.shape
+        g.origin.CopyFrom(_vec2(origin, "origin"))
+        g.dx, g.dy = float(dx), float(dy)
+        g.values.extend(grid.ravel().tolist())
+    return _primitive("distance_grid", name, fill)
+
+
 # ---- operations -------------------------------------------------------------------------------
 
 def _nary(kind, shapes):

@@ -86,6 +86,18 @@ def test_primitives_and_transforms(examples):
     assert t.scale.shape.rotate.center.x == 1
     moved = t.scale.shape.rotate.shape.translate
     assert (moved.offset.x, moved.offset.y, moved.shape.circle.radius) == (2, 3, 1)
+    # A distance grid: rows of the array are rows of the grid, from the origin upwards.
+    sdf = np.array([[-1.0, -0.5, 0.25], [0.5, 1.0, 2.0]])
+    g = meshd.distance_grid(sdf, spacing=(0.5, 2), origin=(1, -1), name="img").proto
+    assert g.name == "img" and (g.distance_grid.nx, g.distance_grid.ny) == (3, 2)
+    assert (g.distance_grid.dx, g.distance_grid.dy, g.distance_grid.origin.x) == (0.5, 2, 1)
+    assert list(g.distance_grid.values) == [-1.0, -0.5, 0.25, 0.5, 1.0, 2.0]
+    assert meshd.distance_grid([[-1, 1], [1, 1]], spacing=0.1).proto.distance_grid.dy == 0.1
+    try:
+        meshd.distance_grid([1.0, -1.0])
+        raise AssertionError("a 1-D grid was accepted")
+    except ValueError:
+        pass
     for bad in (lambda: meshd.circle(1, center=(1,)), lambda: meshd.polygon([(0, 0), "ab"])):
         try:
             bad()

@@ -9,6 +9,7 @@ submit, watch, jobs, the asyncio client, the progress reporters and examples/pyt
 import asyncio
 import contextlib
 import io
+import math
 import os
 import subprocess
 import sys
@@ -33,6 +34,22 @@ def test_generate(ctx):
     with contextlib.redirect_stderr(text):
         ctx.client.generate(ring(0.2), progress="text")
     assert "started on" in text.getvalue() and "done: " in text.getvalue(), text.getvalue()
+
+
+def test_distance_grid(ctx):
+    """A ring whose outside is a sampled disk (a numpy array), minus an exact hole: test_generate's
+    ring, its outer nodes on the circle to the interpolation error (h^2 / 4 at radius 1)."""
+    h = 0.025
+    y, x = np.mgrid[0:97, 0:97] * h - 1.2
+    disk = meshd.distance_grid(np.hypot(x, y) - 1, spacing=h, origin=(-1.2, -1.2))
+    mesh = ctx.client.generate(meshd.request(disk.named("outer") - meshd.circle(0.3).named("hole"),
+                                             h0=0.1, backend="cpu"))
+    exact = math.pi * (1 - 0.3 ** 2)
+    assert abs(mesh.areas().sum() - exact) < 0.02 * exact, f"area {mesh.areas().sum()}"
+    assert sorted(mesh.boundary_names) == ["hole", "outer"], mesh.boundary_names
+    outer = np.unique(mesh.boundary_groups["outer"])
+    r = np.hypot(*mesh.points[outer].T)
+    assert len(outer) > 10 and np.allclose(r, 1, atol=h * h / 4), f"outer nodes at radii {r}"
 
 
 def same_rows(a, b):
@@ -164,5 +181,6 @@ def test_plate_example(ctx):
 
 
 if __name__ == "__main__":
-    sys.exit(main([test_generate, test_to_meshio, test_snapshots, test_submit_watch_jobs,
-                   test_aio, test_optional_reporters, test_plate_example], "--plate"))
+    sys.exit(main([test_generate, test_distance_grid, test_to_meshio, test_snapshots,
+                   test_submit_watch_jobs, test_aio, test_optional_reporters, test_plate_example],
+                  "--plate"))
