@@ -1,6 +1,7 @@
 // Distance grids (grid_sdf.cuh) against the analytic shapes they sample: signs and values within
 // the interpolation error, the box outside the grid, transforms folded like other primitives,
-// CSG with other primitives, bounds, corners and projection onto the boundary.
+// CSG with other primitives, a size field's distance, bounds, corners and projection onto the
+// boundary.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "core/geometry/compile.h"
 #include "core/geometry/projection.cuh"
 #include "core/geometry/sdf_eval.cuh"
+#include "core/geometry/size_eval.cuh"
 #include "tests/core/geometry/shape_builders.h"
 
 namespace meshd {
@@ -136,6 +138,20 @@ TEST(DistanceGrid, CombinesWithOtherPrimitives) {
   for (Vec2 p : random_points({{-1, -1}, {4, 3}}, 3000, 5)) {
     const double fold = eval_program<0>(indexed.view(), 0, indexed.view().size, p, nullptr);
     EXPECT_EQ(eval(indexed, p), fold);
+  }
+}
+
+TEST(DistanceGrid, GradesASizeFieldLikeTheShapeItSamples) {
+  auto field = [](Shape shape) {
+    SizeFieldSpec spec;
+    spec.terms.push_back(DistanceSize{std::move(shape), 1.0, 2.0, 3.0});
+    return compile_size_field(spec);
+  };
+  const SizeProgram grid = field(disk_grid(kN)), exact = field(circle({0, 0}, 1));
+  ASSERT_FALSE(grid.shapes.samples.empty());
+  for (Vec2 p : random_points({{-1.5, -1.5}, {1.5, 1.5}}, 5000, 7)) {
+    if (norm(p) < 0.5) continue;
+    EXPECT_NEAR(eval_size(grid.view(), p), eval_size(exact.view(), p), 2.0 * kInterpolation);
   }
 }
 
