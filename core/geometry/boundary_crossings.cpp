@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/geometry/grid_box_crossings.h"
+
 namespace meshd {
 namespace {
 
@@ -275,6 +277,8 @@ std::vector<Vec2> boundary_crossings(const Program& geometry, const Box& box) {
       if (d.primitive != c.primitive && overlaps(c.bounds, d.bounds)) intersect(c, d, points);
     }
   }
+  for (const Instruction& ins : geometry.code)
+    if (ins.op == Op::kGrid) grid_box_crossings(geometry, ins, points);
   std::vector<Vec2> inside;
   for (Vec2 p : points)
     if (p.x >= wide.min.x && p.x <= wide.max.x && p.y >= wide.min.y && p.y <= wide.max.y)

@@ -10,7 +10,8 @@
 // a quartic, by bracketing the sign changes of the other curve's implicit function along the
 // ellipse's angle at 1024 samples and bisecting each to the last bit. Curves that touch without
 // crossing (tangents) or cross at under kMinCrossingDegrees give no point: the boundary does not
-// turn there.
+// turn there. A distance grid adds no curve (its zero level meets other boundaries undetected);
+// it adds where its zero level meets its own box (grid_box_crossings.h).
 #pragma once
 
 #include <vector>

@@ -1,6 +1,7 @@
 // Whole CPU-engine meshes of domains given as distance grids: the unit disk sampled on a grid
-// (the segmented-image case with an exact distance), and a grid with a disk cut out of it. Held
-// to what the analytic disk (G1) is held to in mesh_quality_test.
+// (the segmented-image case with an exact distance), a grid with a disk cut out of it, and a
+// disk cut by the grid's border. Held to what the analytic disk (G1) is held to in
+// mesh_quality_test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,6 +92,25 @@ TEST(DistanceGridMesh, GridCombinedWithAnExactHoleKeepsBothBoundaries) {
   EXPECT_NEAR(mesh_area(m) / (4 - kPi * 0.25), 1.0, 0.005);
   EXPECT_GE(run.result.quality.q_min, 0.65);
   EXPECT_EQ(m.boundary_names, (std::vector<std::string>{"outer", "hole"}));
+}
+
+TEST(DistanceGridMesh, MaskCutByItsBorderKeepsItsCorners) {
+  // A disk cut by the grid's bottom side, as a segmented object touches its image's border: the
+  // two corners where the circle meets the side are nodes, and stay sharp.
+  const GridMesh run = mesh(testing::distance_grid([](Vec2 p) { return norm(p) - 1.0; },
+                                                   {-1.52, 0.0}, 0.025, 123, 61, "outer"),
+                            1500);
+  const Mesh& m = run.result.mesh;
+  EXPECT_TRUE(check_validity(m).valid());
+  ASSERT_EQ(run.compiled.fixed_points.size(), 2u);
+  for (Vec2 f : run.compiled.fixed_points) {
+    EXPECT_NEAR(std::fabs(f.x), 1.0, 1e-9);
+    EXPECT_NEAR(f.y, 0.0, 1e-9);
+    EXPECT_TRUE(std::find(m.points.begin(), m.points.end(), f) != m.points.end());
+  }
+  EXPECT_LE(worst_boundary_distance(run), 1e-3 * run.compiled.h0);
+  EXPECT_NEAR(mesh_area(m) / (kPi / 2), 1.0, 0.005);
+  EXPECT_GE(run.result.quality.q_min, 0.65);
 }
 
 }  // namespace

@@ -184,6 +184,28 @@ TEST(DistanceGrid, CornersOnlyWhereItsBoxCornersAreOnTheBoundary) {
   }
 }
 
+TEST(DistanceGrid, CornersWhereItsZeroLevelMeetsItsBox) {
+  // The unit disk cut by the grid's bottom side at y = 0 (the samples start off the sample grid
+  // of the first test, so that the crossings fall between samples): a half disk whose two
+  // corners are where the circle meets the side; moved, turned and scaled with the grid.
+  const Shape half = distance_grid([](Vec2 p) { return norm(p) - 1.0; }, {-1.52, 0.0}, kH, 62, 31);
+  for (double scale : {1.0, 3.0}) {
+    const Similarity t{scale, 0.4, {2, -1}};
+    const Program p = compile_geometry(transformed(half, t.scale, t.angle, t.offset));
+    const std::vector<Vec2> corners = boundary_corners(p, program_bounds(p));
+    ASSERT_EQ(corners.size(), 2u) << scale;
+    for (Vec2 want : {apply(t, {-1, 0}), apply(t, {1, 0})}) {
+      EXPECT_TRUE(std::any_of(corners.begin(), corners.end(),
+                              [&](Vec2 c) { return norm(c - want) < 1e-6 * scale; }))
+          << want.x << " " << want.y;
+    }
+  }
+  // A level that runs along a side (a tangent) is no corner: the disk touching the top side.
+  const Program touching = compile_geometry(
+      distance_grid([](Vec2 p) { return norm(p) - 1.0; }, {-1.5, -1.5}, 0.05, 61, 51));
+  EXPECT_TRUE(boundary_corners(touching, program_bounds(touching)).empty());
+}
+
 TEST(DistanceGrid, ProjectionLandsOnItsZeroLevel) {
   // The numerical gradient of projection.cuh on a bilinear field: forward differences along an
   // axis are exact within a cell, so Newton's steps converge to the interpolant's zero level.
