@@ -121,6 +121,13 @@ TEST(DistanceGridConversion, SamplesAboveTheLimitAreResourceExhausted) {
   limits.max_grid_samples = 960;
   expect_error(disk_grid_request(), ErrorCode::kResourceExhausted, "geometry.distance_grid.values",
                "more than the server's limit of 960", limits);
+  // nx * ny counts, not the values sent: a header that claims 10^10 samples is refused before
+  // anything is read or allocated for it.
+  v1::MeshRequest huge = disk_grid_request();
+  grid_of(huge).set_nx(100'000);
+  grid_of(huge).set_ny(100'000);
+  expect_error(huge, ErrorCode::kResourceExhausted, "geometry.distance_grid.values",
+               "hold 10000000000 samples");
   // The limit is on all the grids of a tree together, and named at the grid that crosses it.
   v1::MeshRequest two;
   two.set_h0(0.1);
