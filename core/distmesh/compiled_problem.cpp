@@ -11,6 +11,7 @@
 #include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
+#include "core/geometry/gradation.h"
 #include "core/geometry/sdf_eval.cuh"
 
 namespace meshd {
@@ -101,10 +102,62 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
   return corners;
 }
 
+namespace {
+
+// The box the initial points need: bbox when given, clipped to where the domain can be.
+Box domain_box(const Program& geometry, const std::optional<Box>& bbox) {
+  const Box derived = program_bounds(geometry);
+  if (is_empty(derived))
+    throw_invalid("geometry", "the domain is empty (its intersection is empty)");
+  Box out;
+  if (bbox) {
+    out = *bbox;
+  } else if (!is_bounded(derived)) {
+    throw_invalid("bbox", "required: the geometry is unbounded (a half-plane is not cut off)");
+  } else {
+    out = derived;
+  }
+  if (is_bounded(derived)) {
+    // The initial points only need the part of the box that the domain can occupy.
+    out = {{std::max(out.min.x, derived.min.x), std::max(out.min.y, derived.min.y)},
+           {std::min(out.max.x, derived.max.x), std::min(out.max.y, derived.max.y)}};
+    if (is_empty(out)) throw_invalid("bbox", "does not overlap the geometry");
+  }
+  return out;
+}
+
+// The gradation's grid over `box`: cells of half the finest edge, h0 * (the field's lower bound)
+// / 2; the growth g of the edge h0 * h is g / h0 for h.
+SizeFieldSpec limited_field(const SizeFieldSpec& spec, const Box& box, double h0) {
+  const SizeProgram size = compile_size_field(spec);
+  const double cell = 0.5 * h0 * size_field_range(spec).low;
+  SizeFieldSpec out;
+  out.terms.emplace_back(limited_size_grid(size, box, cell, spec.gradation / h0));
+  return out;
+}
+
+// A field without gradation, or a constant one, has nothing to limit.
+bool limits_gradient(const SizeFieldSpec& spec) {
+  return spec.gradation > 0 && std::any_of(spec.terms.begin(), spec.terms.end(), [](const auto& t) {
+           return !std::holds_alternative<UniformSize>(t);
+         });
+}
+
+}  // namespace
+
+SizeFieldSpec graded_size_field(const Problem& problem) {
+  if (!limits_gradient(problem.size)) return problem.size;
+  return limited_field(problem.size, domain_box(compile_geometry(problem.geometry), problem.bbox),
+                       problem.h0);
+}
+
 CompiledProblem compile_problem(const Problem& problem) {
   CompiledProblem out;
   out.geometry = compile_geometry(problem.geometry);
-  out.size = compile_size_field(problem.size);
+  out.bbox = domain_box(out.geometry, problem.bbox);
+  out.size = compile_size_field(limits_gradient(problem.size)
+                                    ? limited_field(problem.size, out.bbox, problem.h0)
+                                    : problem.size);
   out.h0 = problem.h0;
   // The engines read h0 as the finest edge: they space the first points h0 apart and thin them
   // by (smallest h / h)^2, as distmesh2d.m does. The API means edge = h0 * h(p) (a uniform 0.5
@@ -117,28 +170,12 @@ CompiledProblem compile_problem(const Problem& problem) {
     t.h_min /= floor;
     t.slope /= floor;
     t.h_max /= floor;
+    t.scale /= floor;
   }
   out.params = problem.params;
   if (out.params.fscale_auto)
     out.params.fscale = out.size.uniform() ? kUniformFscale : kGradedFscale;
   out.seed = problem.seed;
-
-  const Box derived = program_bounds(out.geometry);
-  if (is_empty(derived))
-    throw_invalid("geometry", "the domain is empty (its intersection is empty)");
-  if (problem.bbox) {
-    out.bbox = *problem.bbox;
-  } else if (!is_bounded(derived)) {
-    throw_invalid("bbox", "required: the geometry is unbounded (a half-plane is not cut off)");
-  } else {
-    out.bbox = derived;
-  }
-  if (is_bounded(derived)) {
-    // The initial points only need the part of the box that the domain can occupy.
-    out.bbox = {{std::max(out.bbox.min.x, derived.min.x), std::max(out.bbox.min.y, derived.min.y)},
-                {std::min(out.bbox.max.x, derived.max.x), std::min(out.bbox.max.y, derived.max.y)}};
-    if (is_empty(out.bbox)) throw_invalid("bbox", "does not overlap the geometry");
-  }
 
   const double geps = problem.params.geps * problem.h0;
   const double tol = 1e-10 * box_diameter(out.bbox);

@@ -9,6 +9,7 @@
 
 #include "core/common/error.h"
 #include "core/geometry/bounds.h"
+#include "core/geometry/regular_grid.h"
 
 namespace meshd {
 namespace {
@@ -235,6 +236,14 @@ SizeProgram compile_size_field(const SizeFieldSpec& spec) {
   for (const auto& term : spec.terms) {
     if (const auto* u = std::get_if<UniformSize>(&term)) {
       out.terms.push_back({u->value, 0.0, u->value, 0, 0});
+      continue;
+    }
+    if (const auto* g = std::get_if<GridSize>(&term)) {
+      // Bilinear values stay within the samples' range: that range is the term's bounds.
+      const SizeRange range = size_term_range(term);
+      const uint32_t header =
+          append_grid(out.shapes, g->origin, g->spacing, g->nx, g->ny, g->values.data());
+      out.terms.push_back({range.low, 0.0, range.high, 0, 0, header, g->scale});
       continue;
     }
     const auto& d = std::get<DistanceSize>(term);

@@ -13,7 +13,9 @@ namespace meshd {
 // node's path when the tree needs more than kMaxProgramStack values to evaluate.
 Program compile_geometry(const Shape& root);
 
-// The size field's program; each distance term's shape becomes an instruction range.
+// The size field's program; each distance term's shape becomes an instruction range, each grid
+// term's samples a grid in the program (regular_grid.h). `spec.gradation` is not applied here
+// (compile_problem does, over the domain's box).
 SizeProgram compile_size_field(const SizeFieldSpec& spec);
 
 }  // namespace meshd
