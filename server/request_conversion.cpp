@@ -16,22 +16,14 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/geometry/polygon_checks.h"
 #include "core/mesh/mesh.h"
+#include "server/field_checks.h"
+#include "server/size_grid_conversion.h"
 
 namespace meshd {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// Messages: the value as the user wrote it (shortest round-trip text) and the allowed range.
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-std::string got(double v) { return " (got " + num(v) + ")"; }
+// Messages: estimates (field_checks.h has the value as the user wrote it).
 
 // An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
 std::string approx(double v) {
@@ -41,24 +33,6 @@ std::string approx(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3g", v);
   return buffer;
-}
-
-std::string at(const std::string& path, const char* field, int index) {
-  return path + "." + field + "[" + std::to_string(index) + "]";
-}
-
-double finite(double v, const std::string& field) {
-  if (!std::isfinite(v)) throw_invalid(field, "must be finite" + got(v));
-  return v;
-}
-
-double positive(double v, const std::string& field) {
-  if (!(std::isfinite(v) && v > 0)) throw_invalid(field, "must be finite and > 0" + got(v));
-  return v;
-}
-
-Vec2 to_vec2(const v1::Vec2& v, const std::string& field) {
-  return {finite(v.x(), field + ".x"), finite(v.y(), field + ".y")};
 }
 
 // A box given by its corners: max above min in both coordinates.
@@ -262,6 +236,9 @@ class ShapeConverter {
 // ---------------------------------------------------------------------------------------------
 // The size field.
 
+// The steepest gradation: edges may grow by 10 times their length per length unit.
+constexpr double kMaxGradation = 10;
+
 SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
   SizeFieldSpec out;
   if (!request.has_size()) return out;
@@ -275,6 +252,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
   // min h >= min over terms of each term's smallest value.
   double largest = std::numeric_limits<double>::infinity(), smallest = largest;
   int largest_term = -1, smallest_term = -1;
+  int64_t grid_values = 0;
   for (int i = 0; i < terms.size(); ++i) {
     const std::string p = at("size", "terms", i);
     double low = 0.0, high = 0.0;
@@ -306,8 +284,17 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
         out.terms.emplace_back(std::in_place_type<DistanceSize>, std::move(term));
         break;
       }
+      case v1::SizeTerm::kGrid: {
+        GridSize grid =
+            to_grid_size(terms[i].grid(), p + ".grid", limits.max_size_grid_values, grid_values);
+        const SizeRange range = size_term_range(grid);
+        low = range.low;
+        high = range.high;
+        out.terms.emplace_back(std::in_place_type<GridSize>, std::move(grid));
+        break;
+      }
       case v1::SizeTerm::KIND_NOT_SET:
-        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance");
+        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance, grid");
     }
     if (high < largest) largest = high, largest_term = i;
     if (low < smallest) smallest = low, smallest_term = i;
@@ -318,7 +305,17 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
                               " (largest h " + num(largest) + " from size.terms[" +
                               std::to_string(largest_term) + "], smallest " + num(smallest) +
                               " from size.terms[" + std::to_string(smallest_term) + "]); at most " +
-                              num(limits.max_size_ratio) + " allowed: lower h_max or raise h_min");
+                              num(limits.max_size_ratio) +
+                              " allowed: lower h_max or raise h_min (a grid's largest or "
+                              "smallest value)");
+  }
+  if (request.size().has_gradation()) {
+    const double g = request.size().gradation();
+    if (!(g >= 0 && g <= kMaxGradation)) {
+      throw_invalid("size.gradation", "must be 0 (none) or in (0, " + num(kMaxGradation) +
+                                          "], the edge length's growth per length unit" + got(g));
+    }
+    out.gradation = g;
   }
   return out;
 }
@@ -382,11 +379,7 @@ double h0_for_nodes(const Problem& problem, const CompiledProblem& compiled, dou
                     double target) {
   const double h0 = problem.h0 * std::sqrt(nodes / target);
   if (std::isfinite(h0) && h0 > 0) return h0;
-  double floor = problem.size.terms.empty() ? 1.0 : std::numeric_limits<double>::infinity();
-  for (const auto& term : problem.size.terms) {
-    const auto* uniform = std::get_if<UniformSize>(&term);
-    floor = std::min(floor, uniform ? uniform->value : std::get<DistanceSize>(term).h_min);
-  }
+  const double floor = size_field_range(problem.size).low;
   CompiledProblem unit = compiled;
   unit.h0 = 1.0;
   return std::sqrt(estimate_node_count(unit) / target) / floor;
@@ -578,6 +571,9 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
   for (int i = 0; i < points.size(); ++i) {
     problem.fixed_points.push_back(to_vec2(points[i], "fixed_points[" + std::to_string(i) + "]"));
   }
+
+  // Once here, so that the worker meshes the limited grid without sampling the field again.
+  problem.size = graded_size_field(problem);
 
   problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
   problem.params = params(request);

@@ -36,6 +36,8 @@ const char* server_usage() {
                             256: a polygon of 5 million vertices takes about 100)
   --max-snapshot-nodes N    largest mesh whose snapshots may stream, [0, 100000] (default
                             50000; a snapshot must fit a client's 4 MiB message limit)
+  --max-size-grid-values N  samples of a request's size-field grids together, [4, 1e9]
+                            (default 16000000; 4 bytes each in the request)
   --tls-cert FILE --tls-key FILE
                             serve TLS with this PEM certificate chain and key
   --tls-client-ca FILE      also require client certificates signed by this PEM CA
@@ -111,6 +113,8 @@ const std::map<std::string, Setter>& setters() {
        [](O& o, S f, S v) {
          o.jobs.limits.max_snapshot_nodes = static_cast<int>(integer(f, v, 0, 1e5));
        }},
+      {"max-size-grid-values",
+       [](O& o, S f, S v) { o.jobs.limits.max_size_grid_values = integer(f, v, 4, 1e9); }},
       {"tls-cert", [](O& o, S, S v) { o.tls_cert = v; }},
       {"tls-key", [](O& o, S, S v) { o.tls_key = v; }},
       {"tls-client-ca", [](O& o, S, S v) { o.tls_client_ca = v; }},

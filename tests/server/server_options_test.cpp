@@ -65,6 +65,8 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
                                  "1000",
                                  "--max-snapshot-nodes",
                                  "10",
+                                 "--max-size-grid-values",
+                                 "2500",
                                  "--log-level",
                                  "debug"});
   EXPECT_EQ(o.listen, "0.0.0.0:0");
@@ -79,6 +81,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
   EXPECT_EQ(o.drain_timeout_s, 4);
   EXPECT_EQ(o.jobs.limits.max_nodes, 1000);
   EXPECT_EQ(o.jobs.limits.max_snapshot_nodes, 10);
+  EXPECT_EQ(o.jobs.limits.max_size_grid_values, 2500);
   EXPECT_EQ(o.log_level, "debug");
 }
 
