@@ -45,6 +45,22 @@ std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
   return box;
 }
 
+// "x,y".
+Vec2 pair(const std::string& flag, const std::string& v) {
+  const auto comma = v.find(',');
+  if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+    throw_invalid(flag, "expects x,y (got " + quote_input(v) + ")");
+  return {number(flag, v.substr(0, comma)), number(flag, v.substr(comma + 1))};
+}
+
+// "d" or "dx,dy", each > 0.
+Vec2 spacing(const std::string& flag, const std::string& v) {
+  const Vec2 s =
+      v.find(',') == std::string::npos ? Vec2{number(flag, v), number(flag, v)} : pair(flag, v);
+  if (!(s.x > 0 && s.y > 0)) throw_invalid(flag, "must be > 0 (got " + quote_input(v) + ")");
+  return s;
+}
+
 }  // namespace
 
 CliOptions parse_cli(const std::vector<std::string>& args) {
@@ -137,6 +153,14 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.import_name = next();
     else if (a == "--subtract-from-clip")
       o.subtract_from_clip = true;
+    else if (a == "--size-grid")
+      o.size_grid.path = next();
+    else if (a == "--size-grid-origin")
+      o.size_grid.origin = pair(a, next());
+    else if (a == "--size-grid-spacing")
+      o.size_grid.spacing = spacing(a, next());
+    else if (a == "--gradation")
+      o.gradation = number(a, next());
     else if (a == "--state")
       o.state = next();
     else if (!a.empty() && a[0] == '-')
@@ -187,6 +211,13 @@ Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file,
                            the coordinates as they are
   --from-crs CRS           the data's CRS where the file has none (or a wrong one)
   --import-name NAME       boundary-group name of the import (default the layer's name)
+Size field (added to the request file's terms: h is the minimum of them all):
+  --size-grid FILE         relative sizes on a regular grid, read bilinearly: a NumPy .npy
+                           array indexed [row j, column i], row j at y = y0 + j * dy (upwards),
+                           or a GeoTIFF / GDAL raster, north-up, pixel centres as samples
+  --size-grid-origin X,Y   where sample [0, 0] lies (required for .npy; overrides a raster's)
+  --size-grid-spacing D | DX,DY   the samples' spacing (required for .npy; overrides a raster's)
+  --gradation G            the edge length may grow by at most G per length unit, (0, 10]
 Job options (override the file's):
   --backend auto|gpu|cpu  --priority P (-10..10)  --label TEXT
 )";
@@ -208,7 +239,9 @@ Job options (override the file's):
            "  meshctl generate --import coast.gpkg --layer land --subtract-from-clip \\\n"
            "      --clip 290000,4385000,390000,4460000 --simplify 0.5 --h0 500 -o sea.msh\n"
            "  meshctl generate examples/gis/island_ocean.textproto \\\n"
-           "      --import examples/gis/island.geojson -o ocean.msh\n";
+           "      --import examples/gis/island.geojson -o ocean.msh\n"
+           "  meshctl generate --rectangle 4,2 --h0 0.02 --size-grid sizes.npy \\\n"
+           "      --size-grid-origin -2,-1 --size-grid-spacing 0.1 --gradation 0.2 -o graded.msh\n";
   }
   if (command == "submit") {
     return "usage: meshctl submit [REQUEST.textproto] [flags]\n\n"

@@ -7,6 +7,7 @@
 
 #include "client/connection.h"
 #include "client/gis_import.h"
+#include "client/size_grid.h"
 
 namespace meshd::cli {
 
@@ -36,6 +37,10 @@ struct CliOptions {
   std::optional<double> simplify;   // --simplify F: tolerance F * h0
   std::string import_name;          // --import-name; empty: the layer's name
   bool subtract_from_clip = false;  // --subtract-from-clip: the geometry is the clip box minus it
+  // A gridded size term (--size-grid FILE, --size-grid-origin, --size-grid-spacing) and the
+  // size field's gradation (--gradation G).
+  SizeGridOptions size_grid;
+  std::optional<double> gradation;
   // list
   std::string state;
 };

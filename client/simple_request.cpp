@@ -6,6 +6,7 @@
 #include "client/gis_import.h"
 #include "client/imported_shape.h"
 #include "client/request_file.h"
+#include "client/size_grid.h"
 #include "core/common/error.h"
 
 namespace meshd::cli {
@@ -113,6 +114,18 @@ void import_into(const CliOptions& o, v1::MeshRequest& request, std::string* sum
   }
 }
 
+// --size-grid and --gradation add to the request's size field, whatever gave the geometry.
+void add_size_flags(const CliOptions& o, v1::MeshRequest& request) {
+  const SizeGridOptions& g = o.size_grid;
+  if (g.path.empty()) {
+    if (g.origin) throw_invalid("--size-grid-origin", "only with --size-grid FILE");
+    if (g.spacing) throw_invalid("--size-grid-spacing", "only with --size-grid FILE");
+  } else {
+    *request.mutable_size()->add_terms()->mutable_grid() = read_size_grid(g);
+  }
+  if (o.gradation) request.mutable_size()->set_gradation(*o.gradation);
+}
+
 }  // namespace
 
 v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) {
@@ -142,6 +155,7 @@ v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) 
   if (!shape && o.hole) throw_invalid("--hole", "only with --circle or --rectangle");
   if (o.h0) request.set_h0(*o.h0);
   if (importing) import_into(o, request, import_summary);
+  add_size_flags(o, request);
   if (o.seed) request.set_seed(*o.seed);
   v1::JobOptions& job = *request.mutable_options();
   if (o.backend) {
