@@ -117,6 +117,24 @@ def test_request_fields(examples):
             assert list(kwargs)[0] in str(e) or "tpu" in str(e), str(e)
 
 
+def test_size_grid(examples):
+    """meshd.grid: a 2-D array indexed [j, i] becomes a GridSize row by row; gradation goes to
+    the size field."""
+    h = [[1, 2, 3], [4, 5, 6]]  # 2 rows (y), 3 columns (x)
+    req = meshd.request(meshd.rectangle((0, 0), (2, 1)), h0=0.1,
+                        size=[meshd.grid(h, origin=(0, 0), spacing=(1, 1)), 2], gradation=0.3)
+    g = req.size.terms[0].grid
+    assert (g.nx, g.ny, g.spacing.x, g.spacing.y) == (3, 2, 1, 1), g
+    assert list(g.values) == [1, 2, 3, 4, 5, 6], list(g.values)
+    assert req.size.terms[1].uniform.value == 2 and req.size.gradation == 0.3
+    assert meshd.grid(h, (0, 0), 0.5).grid.spacing.y == 0.5
+    try:
+        meshd.grid([1, 2, 3], (0, 0), 1)
+        raise AssertionError("a 1-D grid was accepted")
+    except ValueError as e:
+        assert "2-D" in str(e), str(e)
+
+
 def test_error_parsing(examples):
     path = "geometry.difference.subtract[0].circle.radius"
     e = error_for_status(grpc.StatusCode.INVALID_ARGUMENT, f"{path}: must be finite and > 0 (got -0.5)")
@@ -182,7 +200,8 @@ def main():
     parser.add_argument("--examples", required=True)
     args = parser.parse_args()
     return run_checks([test_installed_package, test_examples_from_builders, test_operators,
-                       test_primitives_and_transforms, test_request_fields, test_error_parsing,
+                       test_primitives_and_transforms, test_request_fields, test_size_grid,
+                       test_error_parsing,
                        test_event_decoder], args.examples)
 
 
