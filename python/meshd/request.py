@@ -19,8 +19,8 @@ PARAMS = tuple(f.name for f in request_pb2.DistMeshParams.DESCRIPTOR.fields)
 
 
 def request(geometry, h0, size=None, *, gradation=None, bbox=None, fixed_points=(),
-            auto_corners=None, seed=0, backend="auto", priority=0, snapshot_every=0, snapshot_max_nodes=0, timeout_s=0.0,
-            label="", **params):
+            auto_corners=None, seed=0, backend="auto", priority=0, snapshot_every=0,
+            snapshot_max_nodes=0, timeout_s=0.0, label="", **params):
     """A MeshRequest. The server checks every value and names the field it refuses.
 
     geometry      a Shape (meshd.circle(...) and friends) or a meshd.v1.Shape
