@@ -236,8 +236,10 @@ class ShapeConverter {
 // ---------------------------------------------------------------------------------------------
 // The size field.
 
-// The steepest gradation: edges may grow by 10 times their length per length unit.
+// The steepest gradation: edges may grow by 10 length units per length unit.
 constexpr double kMaxGradation = 10;
+// The most edges a feature-size term may ask for across a narrow part.
+constexpr double kMaxFeatureElements = 1000;
 
 SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
   SizeFieldSpec out;
@@ -293,8 +295,29 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
         out.terms.emplace_back(std::in_place_type<GridSize>, std::move(grid));
         break;
       }
+      case v1::SizeTerm::kFeature: {
+        const std::string q = p + ".feature";
+        const auto& f = terms[i].feature();
+        FeatureSize term;
+        term.elements = f.elements();
+        if (!(term.elements >= 1 && term.elements <= kMaxFeatureElements)) {
+          throw_invalid(q + ".elements", "must be in [1, " + num(kMaxFeatureElements) +
+                                             "], edges across a narrow part" + got(term.elements));
+        }
+        term.h_min = positive(f.h_min(), q + ".h_min");
+        term.h_max = f.h_max();
+        if (!(std::isfinite(term.h_max) && term.h_max >= term.h_min)) {
+          throw_invalid(q + ".h_max",
+                        "must be finite and >= h_min = " + num(term.h_min) + got(term.h_max));
+        }
+        low = term.h_min;
+        high = term.h_max;
+        out.terms.emplace_back(term);
+        break;
+      }
       case v1::SizeTerm::KIND_NOT_SET:
-        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance, grid");
+        throw_invalid(p,
+                      "no size term kind set; set exactly one of uniform, distance, grid, feature");
     }
     if (high < largest) largest = high, largest_term = i;
     if (low < smallest) smallest = low, smallest_term = i;
@@ -572,8 +595,8 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
     problem.fixed_points.push_back(to_vec2(points[i], "fixed_points[" + std::to_string(i) + "]"));
   }
 
-  // Once here, so that the worker meshes the limited grid without sampling the field again.
-  problem.size = graded_size_field(problem);
+  // Once here, so that the worker meshes the sampled grids without sampling the field again.
+  problem.size = sampled_size_field(problem);
 
   problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
   problem.params = params(request);

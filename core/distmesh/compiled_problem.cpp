@@ -11,6 +11,7 @@
 #include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
+#include "core/geometry/feature_size.h"
 #include "core/geometry/gradation.h"
 #include "core/geometry/sdf_eval.cuh"
 
@@ -126,16 +127,6 @@ Box domain_box(const Program& geometry, const std::optional<Box>& bbox) {
   return out;
 }
 
-// The gradation's grid over `box`: cells of half the finest edge, h0 * (the field's lower bound)
-// / 2; the growth g of the edge h0 * h is g / h0 for h.
-SizeFieldSpec limited_field(const SizeFieldSpec& spec, const Box& box, double h0) {
-  const SizeProgram size = compile_size_field(spec);
-  const double cell = 0.5 * h0 * size_field_range(spec).low;
-  SizeFieldSpec out;
-  out.terms.emplace_back(limited_size_grid(size, box, cell, spec.gradation / h0));
-  return out;
-}
-
 // A field without gradation, or a constant one, has nothing to limit.
 bool limits_gradient(const SizeFieldSpec& spec) {
   return spec.gradation > 0 && std::any_of(spec.terms.begin(), spec.terms.end(), [](const auto& t) {
@@ -143,20 +134,46 @@ bool limits_gradient(const SizeFieldSpec& spec) {
          });
 }
 
+bool needs_sampling(const SizeFieldSpec& spec) {
+  return limits_gradient(spec) ||
+         std::any_of(spec.terms.begin(), spec.terms.end(),
+                     [](const auto& t) { return std::holds_alternative<FeatureSize>(t); });
+}
+
+// Feature-size terms become grids, then a gradation replaces the whole field by its limited
+// grid. Both grids span `box` at half the finest edge, h0 * (the field's lower bound) / 2; the
+// growth g of the edge h0 * h is g / h0 for h.
+SizeFieldSpec sample_field(const SizeFieldSpec& spec, const Program& geometry, const Box& box,
+                           double h0) {
+  const double cell = 0.5 * h0 * size_field_range(spec).low;
+  SizeFieldSpec out = spec;
+  for (SizeTerm& term : out.terms) {
+    if (const auto* f = std::get_if<FeatureSize>(&term))
+      term = feature_size_grid(geometry, *f, box, cell, h0);
+  }
+  if (limits_gradient(out)) {
+    GridSize limited = limited_size_grid(compile_size_field(out), box, cell, out.gradation / h0);
+    out.terms.clear();
+    out.terms.emplace_back(std::move(limited));
+  }
+  out.gradation = 0;
+  return out;
+}
+
 }  // namespace
 
-SizeFieldSpec graded_size_field(const Problem& problem) {
-  if (!limits_gradient(problem.size)) return problem.size;
-  return limited_field(problem.size, domain_box(compile_geometry(problem.geometry), problem.bbox),
-                       problem.h0);
+SizeFieldSpec sampled_size_field(const Problem& problem) {
+  if (!needs_sampling(problem.size)) return problem.size;
+  const Program geometry = compile_geometry(problem.geometry);
+  return sample_field(problem.size, geometry, domain_box(geometry, problem.bbox), problem.h0);
 }
 
 CompiledProblem compile_problem(const Problem& problem) {
   CompiledProblem out;
   out.geometry = compile_geometry(problem.geometry);
   out.bbox = domain_box(out.geometry, problem.bbox);
-  out.size = compile_size_field(limits_gradient(problem.size)
-                                    ? limited_field(problem.size, out.bbox, problem.h0)
+  out.size = compile_size_field(needs_sampling(problem.size)
+                                    ? sample_field(problem.size, out.geometry, out.bbox, problem.h0)
                                     : problem.size);
   out.h0 = problem.h0;
   // The engines read h0 as the finest edge: they space the first points h0 apart and thin them

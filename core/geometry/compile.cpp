@@ -246,6 +246,10 @@ SizeProgram compile_size_field(const SizeFieldSpec& spec) {
       out.terms.push_back({range.low, 0.0, range.high, 0, 0, header, g->scale});
       continue;
     }
+    if (std::holds_alternative<FeatureSize>(term)) {
+      throw Error(ErrorCode::kInternal, "size.terms",
+                  "a feature-size term reached the compiler unsampled (sampled_size_field)");
+    }
     const auto& d = std::get<DistanceSize>(term);
     const auto begin = static_cast<uint32_t>(out.shapes.code.size());
     emitter.emit(d.shape, Similarity{});

@@ -14,8 +14,9 @@ namespace meshd {
 Program compile_geometry(const Shape& root);
 
 // The size field's program; each distance term's shape becomes an instruction range, each grid
-// term's samples a grid in the program (regular_grid.h). `spec.gradation` is not applied here
-// (compile_problem does, over the domain's box).
+// term's samples a grid in the program (regular_grid.h). Feature-size terms and the gradation
+// need the domain: sampled_size_field (compiled_problem.h) turns them into grids first; a
+// feature-size term here is Error(kInternal).
 SizeProgram compile_size_field(const SizeFieldSpec& spec);
 
 }  // namespace meshd

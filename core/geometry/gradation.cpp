@@ -52,11 +52,10 @@ void limit_gradient(GridSize& grid, double g) {
     grid.values[k] = std::min(grid.values[k], static_cast<float>(h[k]));
 }
 
-GridSize limited_size_grid(const SizeProgram& size, const Box& box, double cell, double g) {
+GridSize grid_over(const Box& box, double cell, const std::string& field) {
   const double w = box.max.x - box.min.x, hgt = box.max.y - box.min.y;
-  if (!(w > 0 && hgt > 0 && std::isfinite(w) && std::isfinite(hgt) && cell > 0)) {
-    throw_invalid("size.gradation", "needs a domain whose box has a finite width and height > 0");
-  }
+  if (!(w > 0 && hgt > 0 && std::isfinite(w) && std::isfinite(hgt) && cell > 0))
+    throw_invalid(field, "needs a domain whose box has a finite width and height > 0");
   // Coarser than asked where the box holds too many cells: first to the budget's mean spacing,
   // then in small steps while the rounding up of a long side still exceeds it.
   cell = std::max(cell, std::sqrt(w * hgt / kMaxGradationSamples));
@@ -70,13 +69,18 @@ GridSize limited_size_grid(const SizeProgram& size, const Box& box, double cell,
   grid.nx = static_cast<uint32_t>(nx);
   grid.ny = static_cast<uint32_t>(ny);
   grid.spacing = {w / (nx - 1), hgt / (ny - 1)};
-  grid.values.resize(static_cast<size_t>(grid.nx) * grid.ny);
+  grid.values.assign(static_cast<size_t>(grid.nx) * grid.ny, 0.0f);
+  return grid;
+}
+
+GridSize limited_size_grid(const SizeProgram& size, const Box& box, double cell, double g) {
+  GridSize grid = grid_over(box, cell, "size.gradation");
   grid.scale = size.terms.empty() ? 1.0 : INFINITY;
   for (const SizeTermCode& t : size.terms) grid.scale = std::min(grid.scale, t.h_min);
   const SizeView view = size.view();
   for (uint32_t j = 0; j < grid.ny; ++j)
     for (uint32_t i = 0; i < grid.nx; ++i) {
-      const Vec2 p{box.min.x + i * grid.spacing.x, box.min.y + j * grid.spacing.y};
+      const Vec2 p{grid.origin.x + i * grid.spacing.x, grid.origin.y + j * grid.spacing.y};
       grid.values[static_cast<size_t>(j) * grid.nx + i] =
           static_cast<float>(eval_size(view, p) / grid.scale);
     }

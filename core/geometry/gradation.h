@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "core/common/vec2.h"
 #include "core/geometry/size_field.h"
@@ -24,8 +25,15 @@ namespace meshd {
 //   g     the largest growth of h per length unit of the grid's coordinates, > 0
 void limit_gradient(GridSize& grid, double g);
 
-// At most this many samples in limited_size_grid's grid (about 1024 x 1024).
+// At most this many samples in a grid that the server samples a field on (about 1024 x 1024).
 constexpr double kMaxGradationSamples = 1 << 20;
+
+// A grid whose nodes span `box`, spaced about `cell` apart (more where that would exceed
+// kMaxGradationSamples); its values are nx * ny zeros, its scale 1. Throws
+// Error(kInvalidArgument) naming `field` when the box has no finite, positive width and height.
+//   box   the domain's box
+//   cell  the wanted spacing, > 0
+GridSize grid_over(const Box& box, double cell, const std::string& field);
 
 // `size` sampled at the nodes of a grid that spans `box`, spaced about `cell` apart (more where
 // that would exceed kMaxGradationSamples), then limited to a growth of g per length unit. The

@@ -8,6 +8,7 @@ namespace meshd {
 SizeRange size_term_range(const SizeTerm& term) {
   if (const auto* u = std::get_if<UniformSize>(&term)) return {u->value, u->value};
   if (const auto* d = std::get_if<DistanceSize>(&term)) return {d->h_min, d->h_max};
+  if (const auto* f = std::get_if<FeatureSize>(&term)) return {f->h_min, f->h_max};
   const auto& grid = std::get<GridSize>(term);
   if (grid.values.empty()) return {INFINITY, INFINITY};
   const auto [low, high] = std::minmax_element(grid.values.begin(), grid.values.end());

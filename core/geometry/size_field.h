@@ -36,10 +36,20 @@ struct GridSize {
   double scale = 1.0;         // > 0
 };
 
-using SizeTerm = std::variant<UniformSize, DistanceSize, GridSize>;
+// h(p) = clamp(2 (|d(p)| + d_MA(p)) / (elements * h0), h_min, h_max): about `elements` edges
+// across the domain's narrow parts, d_MA the distance to the medial axis (feature_size.h).
+// Sampled on a grid over the domain before meshing (compile_problem), never compiled as it is.
+struct FeatureSize {
+  double elements = 2.0;  // >= 1
+  double h_min = 1.0;     // > 0
+  double h_max = 1.0;     // >= h_min
+};
+
+using SizeTerm = std::variant<UniformSize, DistanceSize, GridSize, FeatureSize>;
 
 // h(p) = min over terms; no terms means uniform 1. A gradation g > 0 then limits the growth of
-// the edge length, |grad(h0 h)| <= g, on a grid over the domain (gradation.h).
+// the edge length, |grad(h0 h)| <= g, on a grid over the domain (gradation.h); the two are
+// applied by sampled_size_field (compiled_problem.h).
 struct SizeFieldSpec {
   std::vector<SizeTerm> terms;
   double gradation = 0.0;  // 0: none

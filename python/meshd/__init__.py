@@ -8,10 +8,10 @@
     mesh.to_meshio().write("ring.vtu")
 
 Geometry: circle, rectangle, polygon, ellipse, half_plane; | & - and union, intersection,
-difference; .translate(), .rotate(), .scale(), .named(). Size: uniform, graded, grid. Requests:
-request(). Clients: Client and aio.Client. Events: Queued, Started, Progress, Snapshot, Done.
-Errors: MeshdError and its subclasses. The meshd.v1 messages and stubs are generated from the
-repository's proto/ when the package is built.
+difference; .translate(), .rotate(), .scale(), .named(). Size: uniform, graded, grid, feature.
+Requests: request(). Clients: Client and aio.Client. Events: Queued, Started, Progress,
+Snapshot, Done. Errors: MeshdError and its subclasses. The meshd.v1 messages and stubs are
+generated from the repository's proto/ when the package is built.
 """
 
 from meshd import aio
@@ -26,7 +26,7 @@ from meshd.geometry import (Shape, circle, difference, ellipse, half_plane, inte
 from meshd.job_info import JobInfo
 from meshd.mesh import Mesh, Quality, RunStats
 from meshd.request import request
-from meshd.size_field import graded, grid, uniform
+from meshd.size_field import feature, graded, grid, uniform
 from meshd.v1 import geometry_pb2, mesh_pb2, request_pb2, service_pb2
 
 __version__ = "0.1.0"
@@ -39,6 +39,6 @@ __all__ = [
     "Queued", "Started", "Progress", "Snapshot", "Done",
     "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "union", "intersection",
     "difference",
-    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded", "grid",
+    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded", "grid", "feature",
     "geometry_pb2", "mesh_pb2", "request_pb2", "service_pb2",
 ]

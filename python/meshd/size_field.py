@@ -5,6 +5,7 @@ at p is h0 * h(p).
     meshd.graded(hole, h_min=1, slope=4, h_max=2)      # G5: fine at the hole, coarser away
     size=[meshd.graded(hole, 1, 4, 2), meshd.uniform(1.5)]   # the minimum of both
     meshd.grid(h, origin=(0, 0), spacing=0.1)          # h[j, i] at (0.1 i, 0.1 j), bilinear
+    meshd.feature(3, h_min=0.5, h_max=10)              # 3 edges across narrow channels
 """
 
 import numpy as np
@@ -50,6 +51,17 @@ def grid(values, origin, spacing):
     return term
 
 
+def feature(elements, h_min, h_max):
+    """A SizeTerm from the domain's local feature size: about `elements` edges (>= 1) across its
+    narrow parts, h = clamp(2 (|d| + d_MA) / (elements * h0), h_min, h_max), d the distance to
+    the boundary and d_MA to the medial axis; h_min > 0, h_max >= h_min."""
+    term = geometry_pb2.SizeTerm()
+    term.feature.elements = float(elements)
+    term.feature.h_min = float(h_min)
+    term.feature.h_max = float(h_max)
+    return term
+
+
 def size_field(size):
     """A SizeField from a SizeField, one SizeTerm, a number (uniform) or a list of those terms."""
     if isinstance(size, geometry_pb2.SizeField):
@@ -60,7 +72,7 @@ def size_field(size):
         if isinstance(term, (int, float)):
             term = uniform(term)
         if not isinstance(term, geometry_pb2.SizeTerm):
-            raise TypeError(f"size: expected meshd.uniform(...), meshd.graded(...) or "
-                            f"meshd.grid(...), got {type(term).__name__}")
+            raise TypeError(f"size: expected meshd.uniform(...), meshd.graded(...), "
+                            f"meshd.grid(...) or meshd.feature(...), got {type(term).__name__}")
         field.terms.append(term)
     return field

@@ -119,7 +119,7 @@ def test_request_fields(examples):
 
 def test_size_grid(examples):
     """meshd.grid: a 2-D array indexed [j, i] becomes a GridSize row by row; gradation goes to
-    the size field."""
+    the size field; meshd.feature fills a FeatureSize."""
     h = [[1, 2, 3], [4, 5, 6]]  # 2 rows (y), 3 columns (x)
     req = meshd.request(meshd.rectangle((0, 0), (2, 1)), h0=0.1,
                         size=[meshd.grid(h, origin=(0, 0), spacing=(1, 1)), 2], gradation=0.3)
@@ -128,6 +128,8 @@ def test_size_grid(examples):
     assert list(g.values) == [1, 2, 3, 4, 5, 6], list(g.values)
     assert req.size.terms[1].uniform.value == 2 and req.size.gradation == 0.3
     assert meshd.grid(h, (0, 0), 0.5).grid.spacing.y == 0.5
+    f = meshd.feature(3, h_min=0.5, h_max=10).feature
+    assert (f.elements, f.h_min, f.h_max) == (3, 0.5, 10), f
     try:
         meshd.grid([1, 2, 3], (0, 0), 1)
         raise AssertionError("a 1-D grid was accepted")

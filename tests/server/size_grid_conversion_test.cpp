@@ -1,6 +1,7 @@
-// Grid terms of the size field and the gradation through to_problem: each bad input fails on
-// its field path with the allowed range; the request-wide limit on grid values is
-// RESOURCE_EXHAUSTED; the size-ratio limit counts a grid's smallest and largest values.
+// Grid terms of the size field, the gradation and feature-size terms (both sampled into grids)
+// through to_problem: each bad input fails on its field path with the allowed range; the
+// request-wide limit on grid values is RESOURCE_EXHAUSTED; the size-ratio limit counts a grid's
+// smallest and largest values.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -156,6 +157,32 @@ TEST(SizeGridConversion, GradationRangeAndItsGrid) {
   r.mutable_size()->set_gradation(0.02);
   const CompiledProblem slow = compile_problem(to_problem(r));
   EXPECT_NEAR(slow.h0 * eval_size(slow.size.view(), {1.0, 0.5}), 0.05 + 0.02 * 1.0, 1e-5);
+}
+
+TEST(SizeGridConversion, FeatureTermRangesAndItsGrid) {
+  const std::string channel =
+      "geometry { rectangle { min { x: 0 y: 0 } max { x: 8 y: 1 } } } h0: 0.05 ";
+  auto request = [&](const std::string& feature) {
+    return parse_request_text(channel + "size { terms { feature { " + feature + " } } }", "test");
+  };
+  const ErrorCode invalid = ErrorCode::kInvalidArgument;
+  const std::string f = "size.terms[0].feature";
+  expect_error(request("elements: 0.5 h_min: 1 h_max: 2"), invalid, f + ".elements",
+               "must be in [1, 1000], edges across a narrow part (got 0.5)");
+  expect_error(request("elements: 4 h_min: 0 h_max: 2"), invalid, f + ".h_min",
+               "must be finite and > 0 (got 0)");
+  expect_error(request("elements: 4 h_min: 2 h_max: 1"), invalid, f + ".h_max",
+               "must be finite and >= h_min = 2 (got 1)");
+  ConversionLimits limits;
+  limits.max_size_ratio = 10;
+  expect_error(request("elements: 4 h_min: 1 h_max: 20"), invalid, "size", "at most 10 allowed",
+               limits);
+  // Converted, it is already a grid: 4 elements across the width of 1.
+  const Problem p = to_problem(request("elements: 4 h_min: 1 h_max: 10"));
+  ASSERT_EQ(p.size.terms.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<GridSize>(p.size.terms[0]));
+  const CompiledProblem c = compile_problem(p);
+  EXPECT_NEAR(c.h0 * eval_size(c.size.view(), {4, 0.5}), 0.25, 0.01);
 }
 
 }  // namespace

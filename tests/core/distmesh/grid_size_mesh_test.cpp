@@ -89,7 +89,7 @@ TEST(GridSizeMesh, GradationBoundsTheEdgesGrowth) {
   // on the left to 0.04 + 0.01 * 2 = 0.06 on the right, not 0.12.
   Problem p = ramp_problem(0.04);
   p.size.gradation = 0.01;
-  p.size = graded_size_field(p);
+  p.size = sampled_size_field(p);
   const CompiledProblem c = compile_problem(p);
   EXPECT_NEAR(c.h0 * eval_size(c.size.view(), {2, 0.5}), 0.06, 1e-4);
   ThreadPool pool;

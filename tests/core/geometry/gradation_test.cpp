@@ -133,8 +133,8 @@ TEST(Gradation, CompiledFieldGrowsTheEdgeLengthAtTheGradation) {
     EXPECT_LE(edge({1, 0.5 + r}), 1.03 * expected + 1e-4) << r;
   }
   EXPECT_NEAR(edge({0.1, 0.1}), 0.02, 1e-6);  // far away: the field's own 1
-  // graded_size_field gives the same grid, ready for the service to keep.
-  const SizeFieldSpec graded = graded_size_field(p);
+  // sampled_size_field gives the same grid, ready for the service to keep.
+  const SizeFieldSpec graded = sampled_size_field(p);
   ASSERT_EQ(graded.terms.size(), 1u);
   EXPECT_EQ(graded.gradation, 0.0);
   const GridSize& g = std::get<GridSize>(graded.terms[0]);
