@@ -1,7 +1,6 @@
 #include "server/request_conversion.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
