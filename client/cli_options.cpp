@@ -45,16 +45,20 @@ std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
   return box;
 }
 
-// "a,b", or with `one_allowed` a lone "a" meaning "a,a".
-std::pair<double, double> number_pair(const std::string& flag, const std::string& v,
-                                      bool one_allowed, const char* form) {
+// "a,b" (`form` names them in the message, e.g. "x,y" or "W,H").
+Vec2 pair(const std::string& flag, const std::string& v, const char* form = "x,y") {
   const auto comma = v.find(',');
-  if (comma == std::string::npos) {
-    if (!one_allowed) throw_invalid(flag, std::string("expects ") + form + " (got '" + v + "')");
-    const double a = number(flag, v);
-    return {a, a};
-  }
+  if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
+    throw_invalid(flag, std::string("expects ") + form + " (got " + quote_input(v) + ")");
   return {number(flag, v.substr(0, comma)), number(flag, v.substr(comma + 1))};
+}
+
+// "d" or "dx,dy", each > 0: the distance between a grid's samples.
+Vec2 spacing(const std::string& flag, const std::string& v) {
+  const Vec2 s = v.find(',') == std::string::npos ? Vec2{number(flag, v), number(flag, v)}
+                                                  : pair(flag, v, "d or dx,dy");
+  if (!(s.x > 0 && s.y > 0)) throw_invalid(flag, "must be > 0 (got " + quote_input(v) + ")");
+  return s;
 }
 
 }  // namespace
@@ -125,17 +129,16 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.h0 = number(a, next());
     else if (a == "--seed")
       o.seed = static_cast<uint64_t>(integer(a, next()));
-    else if (a == "--rectangle")
-      o.rectangle = number_pair(a, next(), false, "W,H");
-    else if (a == "--sdf-grid")
+    else if (a == "--rectangle") {
+      const Vec2 wh = pair(a, next(), "W,H");
+      o.rectangle = {wh.x, wh.y};
+    } else if (a == "--sdf-grid")
       o.sdf_grid = next();
     else if (a == "--sdf-grid-origin")
-      o.sdf_grid_origin = number_pair(a, next(), false, "X,Y");
-    else if (a == "--sdf-grid-spacing") {
-      o.sdf_grid_spacing = number_pair(a, next(), true, "D or DX,DY");
-      if (!(o.sdf_grid_spacing->first > 0 && o.sdf_grid_spacing->second > 0))
-        throw_invalid(a, "must be > 0 (the distance between samples)");
-    } else if (a == "--import")
+      o.sdf_grid_origin = pair(a, next());
+    else if (a == "--sdf-grid-spacing")
+      o.sdf_grid_spacing = spacing(a, next());
+    else if (a == "--import")
       o.gis.path = next();
     else if (a == "--layer")
       o.gis.layer = next();
@@ -154,6 +157,14 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.import_name = next();
     else if (a == "--subtract-from-clip")
       o.subtract_from_clip = true;
+    else if (a == "--size-grid")
+      o.size_grid.path = next();
+    else if (a == "--size-grid-origin")
+      o.size_grid.origin = pair(a, next());
+    else if (a == "--size-grid-spacing")
+      o.size_grid.spacing = spacing(a, next());
+    else if (a == "--gradation")
+      o.gradation = number(a, next());
     else if (a == "--state")
       o.state = next();
     else if (!a.empty() && a[0] == '-')
@@ -211,6 +222,13 @@ Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file,
                            the coordinates as they are
   --from-crs CRS           the data's CRS where the file has none (or a wrong one)
   --import-name NAME       boundary-group name of the import (default the layer's name)
+Size field (added to the request file's terms: h is the minimum of them all):
+  --size-grid FILE         relative sizes on a regular grid, read bilinearly: a NumPy .npy
+                           array indexed [row j, column i], row j at y = y0 + j * dy (upwards),
+                           or a GeoTIFF / GDAL raster, north-up, pixel centres as samples
+  --size-grid-origin X,Y   where sample [0, 0] lies (required for .npy; overrides a raster's)
+  --size-grid-spacing D | DX,DY   the samples' spacing (required for .npy; overrides a raster's)
+  --gradation G            the edge length may grow by at most G per length unit, (0, 10]
 Job options (override the file's):
   --backend auto|gpu|cpu  --priority P (-10..10)  --label TEXT
 )";
@@ -233,7 +251,9 @@ Job options (override the file's):
            "  meshctl generate --import coast.gpkg --layer land --subtract-from-clip \\\n"
            "      --clip 290000,4385000,390000,4460000 --simplify 0.5 --h0 500 -o sea.msh\n"
            "  meshctl generate examples/gis/island_ocean.textproto \\\n"
-           "      --import examples/gis/island.geojson -o ocean.msh\n";
+           "      --import examples/gis/island.geojson -o ocean.msh\n"
+           "  meshctl generate --rectangle 4,2 --h0 0.02 --size-grid sizes.npy \\\n"
+           "      --size-grid-origin -2,-1 --size-grid-spacing 0.1 --gradation 0.2 -o graded.msh\n";
   }
   if (command == "submit") {
     return "usage: meshctl submit [REQUEST.textproto] [flags]\n\n"

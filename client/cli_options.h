@@ -7,6 +7,7 @@
 
 #include "client/connection.h"
 #include "client/gis_import.h"
+#include "client/size_grid.h"
 
 namespace meshd::cli {
 
@@ -38,7 +39,11 @@ struct CliOptions {
   bool subtract_from_clip = false;  // --subtract-from-clip: the geometry is the clip box minus it
   // A signed-distance grid (--sdf-grid FILE.npy) placed by its origin and spacing.
   std::string sdf_grid;
-  std::optional<std::pair<double, double>> sdf_grid_origin, sdf_grid_spacing;
+  std::optional<Vec2> sdf_grid_origin, sdf_grid_spacing;
+  // A gridded size term (--size-grid FILE, --size-grid-origin, --size-grid-spacing) and the
+  // size field's gradation (--gradation G).
+  SizeGridOptions size_grid;
+  std::optional<double> gradation;
   // list
   std::string state;
 };

@@ -49,6 +49,9 @@ int report(const grpc::Status& status, bool json, EventView* view = nullptr) {
 
 int report_error(const Error& e) {
   std::fprintf(stderr, "meshctl: %s\n", e.what());
+  // A meshctl without GDAL asked for a raster or an import is a failed precondition, not a bad
+  // result.
+  if (e.code() == ErrorCode::kFailedPrecondition) return kExitFailedPrecondition;
   return e.code() == ErrorCode::kInvalidArgument ? kExitBadRequest : kExitBadResult;
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <regex>
 
 #include "core/common/error.h"
@@ -107,6 +108,20 @@ NpyArray read_npy(const std::string& path, const std::string& flag) {
     }
   }
   return out;
+}
+
+NpyGrid read_npy_grid(const std::string& path, const std::string& flag, const std::string& what) {
+  NpyArray a = read_npy(path, flag);
+  const int64_t kMax = std::numeric_limits<uint32_t>::max();
+  if (a.shape.size() != 2 || a.shape[0] < 2 || a.shape[1] < 2 || a.shape[0] > kMax ||
+      a.shape[1] > kMax) {
+    std::string shape;
+    for (const int64_t d : a.shape) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
+    throw_invalid(flag, "'" + path + "': an array of shape (" + shape + "); " + what +
+                            " is 2-D, indexed [row j, column i], at least 2 x 2");
+  }
+  return {static_cast<uint32_t>(a.shape[1]), static_cast<uint32_t>(a.shape[0]),
+          std::move(a.values)};
 }
 
 }  // namespace meshd::cli

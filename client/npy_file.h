@@ -21,4 +21,13 @@ struct NpyArray {
 
 NpyArray read_npy(const std::string& path, const std::string& flag);
 
+// A grid: a 2-D array [rows j, columns i] of at least 2 x 2. `what` names it in the message of
+// the error for any other shape ("a distance grid").
+struct NpyGrid {
+  uint32_t nx = 0, ny = 0;
+  std::vector<float> values;  // ny rows of nx
+};
+
+NpyGrid read_npy_grid(const std::string& path, const std::string& flag, const std::string& what);
+
 }  // namespace meshd::cli

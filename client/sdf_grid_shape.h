@@ -2,8 +2,8 @@
 #pragma once
 
 #include <string>
-#include <utility>
 
+#include "core/common/vec2.h"
 #include "meshd/v1/geometry.pb.h"
 
 namespace meshd::cli {
@@ -13,7 +13,7 @@ namespace meshd::cli {
 // Error(kInvalidArgument) naming --sdf-grid and the file when the array is not 2-D with at least
 // 2 x 2 values, or holds a value that is not finite in single precision (its [j, i] said); the
 // server checks the rest (geometry.proto).
-v1::Shape sdf_grid_shape(const std::string& path, std::pair<double, double> origin,
-                         std::pair<double, double> spacing, const std::string& name);
+v1::Shape sdf_grid_shape(const std::string& path, Vec2 origin, Vec2 spacing,
+                         const std::string& name);
 
 }  // namespace meshd::cli

@@ -8,6 +8,7 @@
 #include "client/imported_shape.h"
 #include "client/request_file.h"
 #include "client/sdf_grid_shape.h"
+#include "client/size_grid.h"
 #include "core/common/error.h"
 
 namespace meshd::cli {
@@ -130,6 +131,18 @@ void check_sdf_grid_flags(const CliOptions& o, bool shape, bool importing) {
   if (!o.h0) throw_invalid("--h0", "required with --sdf-grid");
 }
 
+// --size-grid and --gradation add to the request's size field, whatever gave the geometry.
+void add_size_flags(const CliOptions& o, v1::MeshRequest& request) {
+  const SizeGridOptions& g = o.size_grid;
+  if (g.path.empty()) {
+    if (g.origin) throw_invalid("--size-grid-origin", "only with --size-grid FILE");
+    if (g.spacing) throw_invalid("--size-grid-spacing", "only with --size-grid FILE");
+  } else {
+    *request.mutable_size()->add_terms()->mutable_grid() = read_size_grid(g);
+  }
+  if (o.gradation) request.mutable_size()->set_gradation(*o.gradation);
+}
+
 }  // namespace
 
 v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) {
@@ -153,8 +166,8 @@ v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) 
   if (grid) {
     // Its boundary group is named after the file, as an import's after its layer.
     *request.mutable_geometry() =
-        sdf_grid_shape(o.sdf_grid, o.sdf_grid_origin.value_or(std::pair{0.0, 0.0}),
-                       o.sdf_grid_spacing.value_or(std::pair{1.0, 1.0}),
+        sdf_grid_shape(o.sdf_grid, o.sdf_grid_origin.value_or(Vec2{0.0, 0.0}),
+                       o.sdf_grid_spacing.value_or(Vec2{1.0, 1.0}),
                        group_name(std::filesystem::path(o.sdf_grid).stem().string()));
   } else if (shape) {
     if (!o.h0) throw_invalid("--h0", "required with --circle or --rectangle");
@@ -167,6 +180,7 @@ v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) 
   if (!shape && o.hole) throw_invalid("--hole", "only with --circle or --rectangle");
   if (o.h0) request.set_h0(*o.h0);
   if (importing) import_into(o, request, import_summary);
+  add_size_flags(o, request);
   if (o.seed) request.set_seed(*o.seed);
   v1::JobOptions& job = *request.mutable_options();
   if (o.backend) {

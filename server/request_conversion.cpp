@@ -16,13 +16,14 @@
 #include "core/geometry/polygon_checks.h"
 #include "core/mesh/mesh.h"
 #include "server/distance_grid_conversion.h"
-#include "server/field_values.h"
+#include "server/field_checks.h"
+#include "server/size_grid_conversion.h"
 
 namespace meshd {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// Messages: the value as the user wrote it (field_values.h) and the allowed range.
+// Messages: estimates (field_checks.h has the value as the user wrote it).
 
 // An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
 std::string approx(double v) {
@@ -32,10 +33,6 @@ std::string approx(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3g", v);
   return buffer;
-}
-
-std::string at(const std::string& path, const char* field, int index) {
-  return path + "." + field + "[" + std::to_string(index) + "]";
 }
 
 // A box given by its corners: max above min in both coordinates.
@@ -245,6 +242,11 @@ class ShapeConverter {
 // ---------------------------------------------------------------------------------------------
 // The size field.
 
+// The steepest gradation: edges may grow by 10 length units per length unit.
+constexpr double kMaxGradation = 10;
+// The most edges a feature-size term may ask for across a narrow part.
+constexpr double kMaxFeatureElements = 1000;
+
 SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
   SizeFieldSpec out;
   if (!request.has_size()) return out;
@@ -258,6 +260,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
   // min h >= min over terms of each term's smallest value.
   double largest = std::numeric_limits<double>::infinity(), smallest = largest;
   int largest_term = -1, smallest_term = -1;
+  int64_t grid_values = 0;
   for (int i = 0; i < terms.size(); ++i) {
     const std::string p = at("size", "terms", i);
     double low = 0.0, high = 0.0;
@@ -289,8 +292,38 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
         out.terms.emplace_back(std::in_place_type<DistanceSize>, std::move(term));
         break;
       }
+      case v1::SizeTerm::kGrid: {
+        GridSize grid =
+            to_grid_size(terms[i].grid(), p + ".grid", limits.max_size_grid_values, grid_values);
+        const SizeRange range = size_term_range(grid);
+        low = range.low;
+        high = range.high;
+        out.terms.emplace_back(std::in_place_type<GridSize>, std::move(grid));
+        break;
+      }
+      case v1::SizeTerm::kFeature: {
+        const std::string q = p + ".feature";
+        const auto& f = terms[i].feature();
+        FeatureSize term;
+        term.elements = f.elements();
+        if (!(term.elements >= 1 && term.elements <= kMaxFeatureElements)) {
+          throw_invalid(q + ".elements", "must be in [1, " + num(kMaxFeatureElements) +
+                                             "], edges across a narrow part" + got(term.elements));
+        }
+        term.h_min = positive(f.h_min(), q + ".h_min");
+        term.h_max = f.h_max();
+        if (!(std::isfinite(term.h_max) && term.h_max >= term.h_min)) {
+          throw_invalid(q + ".h_max",
+                        "must be finite and >= h_min = " + num(term.h_min) + got(term.h_max));
+        }
+        low = term.h_min;
+        high = term.h_max;
+        out.terms.emplace_back(term);
+        break;
+      }
       case v1::SizeTerm::KIND_NOT_SET:
-        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance");
+        throw_invalid(p,
+                      "no size term kind set; set exactly one of uniform, distance, grid, feature");
     }
     if (high < largest) largest = high, largest_term = i;
     if (low < smallest) smallest = low, smallest_term = i;
@@ -301,7 +334,17 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
                               " (largest h " + num(largest) + " from size.terms[" +
                               std::to_string(largest_term) + "], smallest " + num(smallest) +
                               " from size.terms[" + std::to_string(smallest_term) + "]); at most " +
-                              num(limits.max_size_ratio) + " allowed: lower h_max or raise h_min");
+                              num(limits.max_size_ratio) +
+                              " allowed: lower h_max or raise h_min (a grid's largest or "
+                              "smallest value)");
+  }
+  if (request.size().has_gradation()) {
+    const double g = request.size().gradation();
+    if (!(g >= 0 && g <= kMaxGradation)) {
+      throw_invalid("size.gradation", "must be 0 (none) or in (0, " + num(kMaxGradation) +
+                                          "], the edge length's growth per length unit" + got(g));
+    }
+    out.gradation = g;
   }
   return out;
 }
@@ -365,11 +408,7 @@ double h0_for_nodes(const Problem& problem, const CompiledProblem& compiled, dou
                     double target) {
   const double h0 = problem.h0 * std::sqrt(nodes / target);
   if (std::isfinite(h0) && h0 > 0) return h0;
-  double floor = problem.size.terms.empty() ? 1.0 : std::numeric_limits<double>::infinity();
-  for (const auto& term : problem.size.terms) {
-    const auto* uniform = std::get_if<UniformSize>(&term);
-    floor = std::min(floor, uniform ? uniform->value : std::get<DistanceSize>(term).h_min);
-  }
+  const double floor = size_field_range(problem.size).low;
   CompiledProblem unit = compiled;
   unit.h0 = 1.0;
   return std::sqrt(estimate_node_count(unit) / target) / floor;
@@ -561,6 +600,9 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
   for (int i = 0; i < points.size(); ++i) {
     problem.fixed_points.push_back(to_vec2(points[i], "fixed_points[" + std::to_string(i) + "]"));
   }
+
+  // Once here, so that the worker meshes the sampled grids without sampling the field again.
+  problem.size = sampled_size_field(problem);
 
   problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
   problem.params = params(request);

@@ -38,6 +38,8 @@ const char* server_usage() {
                             50000; a snapshot must fit a client's 4 MiB message limit)
   --max-grid-samples N      samples of the distance grids of one shape tree, [4, 1e9]
                             (default 16777216: a 4096 x 4096 image)
+  --max-size-grid-values N  samples of a request's size-field grids together, [4, 1e9]
+                            (default 16777216: 4096 x 4096, 4 bytes each)
   --tls-cert FILE --tls-key FILE
                             serve TLS with this PEM certificate chain and key
   --tls-client-ca FILE      also require client certificates signed by this PEM CA
@@ -115,6 +117,8 @@ const std::map<std::string, Setter>& setters() {
        }},
       {"max-grid-samples",
        [](O& o, S f, S v) { o.jobs.limits.max_grid_samples = integer(f, v, 4, 1e9); }},
+      {"max-size-grid-values",
+       [](O& o, S f, S v) { o.jobs.limits.max_size_grid_values = integer(f, v, 4, 1e9); }},
       {"tls-cert", [](O& o, S, S v) { o.tls_cert = v; }},
       {"tls-key", [](O& o, S, S v) { o.tls_key = v; }},
       {"tls-client-ca", [](O& o, S, S v) { o.tls_client_ca = v; }},

@@ -11,6 +11,8 @@
 #include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
+#include "core/geometry/feature_size.h"
+#include "core/geometry/gradation.h"
 #include "core/geometry/sdf_eval.cuh"
 
 namespace meshd {
@@ -101,10 +103,78 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
   return corners;
 }
 
+namespace {
+
+// The box the initial points need: bbox when given, clipped to where the domain can be.
+Box domain_box(const Program& geometry, const std::optional<Box>& bbox) {
+  const Box derived = program_bounds(geometry);
+  if (is_empty(derived))
+    throw_invalid("geometry", "the domain is empty (its intersection is empty)");
+  Box out;
+  if (bbox) {
+    out = *bbox;
+  } else if (!is_bounded(derived)) {
+    throw_invalid("bbox", "required: the geometry is unbounded (a half-plane is not cut off)");
+  } else {
+    out = derived;
+  }
+  if (is_bounded(derived)) {
+    // The initial points only need the part of the box that the domain can occupy.
+    out = {{std::max(out.min.x, derived.min.x), std::max(out.min.y, derived.min.y)},
+           {std::min(out.max.x, derived.max.x), std::min(out.max.y, derived.max.y)}};
+    if (is_empty(out)) throw_invalid("bbox", "does not overlap the geometry");
+  }
+  return out;
+}
+
+// A field without gradation, or a constant one, has nothing to limit.
+bool limits_gradient(const SizeFieldSpec& spec) {
+  return spec.gradation > 0 && std::any_of(spec.terms.begin(), spec.terms.end(), [](const auto& t) {
+           return !std::holds_alternative<UniformSize>(t);
+         });
+}
+
+bool needs_sampling(const SizeFieldSpec& spec) {
+  return limits_gradient(spec) ||
+         std::any_of(spec.terms.begin(), spec.terms.end(),
+                     [](const auto& t) { return std::holds_alternative<FeatureSize>(t); });
+}
+
+// Feature-size terms become grids, then a gradation replaces the whole field by its limited
+// grid. Both grids span `box` at half the finest edge, h0 * (the field's lower bound) / 2; the
+// growth g of the edge h0 * h is g / h0 for h.
+SizeFieldSpec sample_field(const SizeFieldSpec& spec, const Program& geometry, const Box& box,
+                           double h0) {
+  const double cell = 0.5 * h0 * size_field_range(spec).low;
+  SizeFieldSpec out = spec;
+  for (SizeTerm& term : out.terms) {
+    if (const auto* f = std::get_if<FeatureSize>(&term))
+      term = feature_size_grid(geometry, *f, box, cell, h0);
+  }
+  if (limits_gradient(out)) {
+    GridSize limited = limited_size_grid(compile_size_field(out), box, cell, out.gradation / h0);
+    out.terms.clear();
+    out.terms.emplace_back(std::move(limited));
+  }
+  out.gradation = 0;
+  return out;
+}
+
+}  // namespace
+
+SizeFieldSpec sampled_size_field(const Problem& problem) {
+  if (!needs_sampling(problem.size)) return problem.size;
+  const Program geometry = compile_geometry(problem.geometry);
+  return sample_field(problem.size, geometry, domain_box(geometry, problem.bbox), problem.h0);
+}
+
 CompiledProblem compile_problem(const Problem& problem) {
   CompiledProblem out;
   out.geometry = compile_geometry(problem.geometry);
-  out.size = compile_size_field(problem.size);
+  out.bbox = domain_box(out.geometry, problem.bbox);
+  out.size = compile_size_field(needs_sampling(problem.size)
+                                    ? sample_field(problem.size, out.geometry, out.bbox, problem.h0)
+                                    : problem.size);
   out.h0 = problem.h0;
   // The engines read h0 as the finest edge: they space the first points h0 apart and thin them
   // by (smallest h / h)^2, as distmesh2d.m does. The API means edge = h0 * h(p) (a uniform 0.5
@@ -117,28 +187,12 @@ CompiledProblem compile_problem(const Problem& problem) {
     t.h_min /= floor;
     t.slope /= floor;
     t.h_max /= floor;
+    t.scale /= floor;
   }
   out.params = problem.params;
   if (out.params.fscale_auto)
     out.params.fscale = out.size.uniform() ? kUniformFscale : kGradedFscale;
   out.seed = problem.seed;
-
-  const Box derived = program_bounds(out.geometry);
-  if (is_empty(derived))
-    throw_invalid("geometry", "the domain is empty (its intersection is empty)");
-  if (problem.bbox) {
-    out.bbox = *problem.bbox;
-  } else if (!is_bounded(derived)) {
-    throw_invalid("bbox", "required: the geometry is unbounded (a half-plane is not cut off)");
-  } else {
-    out.bbox = derived;
-  }
-  if (is_bounded(derived)) {
-    // The initial points only need the part of the box that the domain can occupy.
-    out.bbox = {{std::max(out.bbox.min.x, derived.min.x), std::max(out.bbox.min.y, derived.min.y)},
-                {std::min(out.bbox.max.x, derived.max.x), std::min(out.bbox.max.y, derived.max.y)}};
-    if (is_empty(out.bbox)) throw_invalid("bbox", "does not overlap the geometry");
-  }
 
   const double geps = problem.params.geps * problem.h0;
   const double tol = 1e-10 * box_diameter(out.bbox);

@@ -21,9 +21,19 @@ struct CompiledProblem {
   uint64_t seed = 0;
 };
 
-// Compiles `problem`. Throws Error(kInvalidArgument) naming the field when the geometry is
-// unbounded without a bbox, the bbox or domain is empty, or a fixed point lies outside.
+// Compiles `problem`; feature-size terms and a gradation are sampled as sampled_size_field's.
+// Throws Error(kInvalidArgument) naming the field when the geometry is unbounded without a bbox,
+// the bbox or domain is empty, or a fixed point lies outside.
 CompiledProblem compile_problem(const Problem& problem);
+
+// `problem.size` with what needs the domain sampled on grids over the domain's box, at half the
+// finest edge: each feature-size term becomes its grid (feature_size.h); then a gradation
+// limits the growth of the edge length h0 * h to `gradation` per length unit (gradation.h),
+// the whole field becoming one grid term. The result has no gradation and no feature-size term;
+// a field that has neither comes back as it is. The field compile_problem meshes with; the
+// service applies it once, when it converts a request. Throws as compile_problem does for an
+// empty or unbounded domain.
+SizeFieldSpec sampled_size_field(const Problem& problem);
 
 // The corners of `geometry`'s final boundary (|d| tiny there): polygon and rectangle vertices
 // where the outline turns by kMinCrossingDegrees or more, and the crossings of two primitives'

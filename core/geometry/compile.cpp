@@ -263,6 +263,18 @@ SizeProgram compile_size_field(const SizeFieldSpec& spec) {
       out.terms.push_back({u->value, 0.0, u->value, 0, 0});
       continue;
     }
+    if (const auto* g = std::get_if<GridSize>(&term)) {
+      // Bilinear values stay within the samples' range: that range is the term's bounds.
+      const SizeRange range = size_term_range(term);
+      const uint32_t header =
+          append_grid(out.shapes, g->origin, g->spacing, g->nx, g->ny, g->values.data());
+      out.terms.push_back({range.low, 0.0, range.high, 0, 0, header, g->scale});
+      continue;
+    }
+    if (std::holds_alternative<FeatureSize>(term)) {
+      throw Error(ErrorCode::kInternal, "size.terms",
+                  "a feature-size term reached the compiler unsampled (sampled_size_field)");
+    }
     const auto& d = std::get<DistanceSize>(term);
     const auto begin = static_cast<uint32_t>(out.shapes.code.size());
     emitter.emit(d.shape, Similarity{});

@@ -13,7 +13,10 @@ namespace meshd {
 // node's path when the tree needs more than kMaxProgramStack values to evaluate.
 Program compile_geometry(const Shape& root);
 
-// The size field's program; each distance term's shape becomes an instruction range.
+// The size field's program; each distance term's shape becomes an instruction range, each grid
+// term's samples a grid in the program (regular_grid.h). Feature-size terms and the gradation
+// need the domain: sampled_size_field (compiled_problem.h) turns them into grids first; a
+// feature-size term here is Error(kInternal).
 SizeProgram compile_size_field(const SizeFieldSpec& spec);
 
 }  // namespace meshd

@@ -8,11 +8,11 @@
     mesh.to_meshio().write("ring.vtu")
 
 Geometry: circle, rectangle, polygon, ellipse, half_plane, distance_grid (a numpy array of
-signed distances); | & - and union, intersection,
-difference; .translate(), .rotate(), .scale(), .named(). Size: uniform, graded. Requests:
-request(). Clients: Client and aio.Client. Events: Queued, Started, Progress, Snapshot, Done.
-Errors: MeshdError and its subclasses. The meshd.v1 messages and stubs are generated from the
-repository's proto/ when the package is built.
+signed distances); | & - and union, intersection, difference; .translate(), .rotate(),
+.scale(), .named(). Size: uniform, graded, grid, feature. Requests: request(). Clients: Client
+and aio.Client. Events: Queued, Started, Progress, Snapshot, Done. Errors: MeshdError and its
+subclasses. The meshd.v1 messages and stubs are generated from the repository's proto/ when the
+package is built.
 """
 
 from meshd import aio
@@ -27,7 +27,7 @@ from meshd.geometry import (Shape, circle, difference, distance_grid, ellipse, h
 from meshd.job_info import JobInfo
 from meshd.mesh import Mesh, Quality, RunStats
 from meshd.request import request
-from meshd.size_field import graded, uniform
+from meshd.size_field import feature, graded, grid, uniform
 from meshd.v1 import geometry_pb2, mesh_pb2, request_pb2, service_pb2
 
 __version__ = "0.1.0"
@@ -40,6 +40,6 @@ __all__ = [
     "Queued", "Started", "Progress", "Snapshot", "Done",
     "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "distance_grid", "union",
     "intersection", "difference",
-    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded",
+    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded", "grid", "feature",
     "geometry_pb2", "mesh_pb2", "request_pb2", "service_pb2",
 ]

@@ -175,7 +175,7 @@ def distance_grid(values, spacing=1.0, origin=(0.0, 0.0), name=None):
     def fill(g):
         g.ny, g.nx = grid.shape
         g.origin.CopyFrom(_vec2(origin, "origin"))
-        g.dx, g.dy = float(dx), float(dy)
+        g.spacing.x, g.spacing.y = float(dx), float(dy)
         g.values.extend(grid.ravel().tolist())
     return _primitive("distance_grid", name, fill)
 

@@ -18,14 +18,16 @@ BACKEND_NAMES = {value: name for name, value in BACKENDS.items()}
 PARAMS = tuple(f.name for f in request_pb2.DistMeshParams.DESCRIPTOR.fields)
 
 
-def request(geometry, h0, size=None, *, bbox=None, fixed_points=(), auto_corners=None, seed=0,
-            backend="auto", priority=0, snapshot_every=0, snapshot_max_nodes=0, timeout_s=0.0,
-            label="", **params):
+def request(geometry, h0, size=None, *, gradation=None, bbox=None, fixed_points=(),
+            auto_corners=None, seed=0, backend="auto", priority=0, snapshot_every=0,
+            snapshot_max_nodes=0, timeout_s=0.0, label="", **params):
     """A MeshRequest. The server checks every value and names the field it refuses.
 
     geometry      a Shape (meshd.circle(...) and friends) or a meshd.v1.Shape
     h0            edge length where h(p) = 1, in length units, > 0
-    size          size field: meshd.uniform(v), meshd.graded(...), a list of them, or a number
+    size          size field: meshd.uniform(v), meshd.graded(...), meshd.grid(...), a list of
+                  them, or a number
+    gradation     the edge length may grow by at most this much per length unit, (0, 10]
     bbox          ((x0, y0), (x1, y1)), box of the initial points; needed for unbounded trees
     fixed_points  #F by 2, nodes kept exactly
     auto_corners  polygon and rectangle corners and boundary crossings become fixed (default on)
@@ -50,6 +52,8 @@ def request(geometry, h0, size=None, *, bbox=None, fixed_points=(), auto_corners
     req.geometry.CopyFrom(as_shape_proto(geometry))
     if size is not None:
         req.size.CopyFrom(size_field(size))
+    if gradation is not None:
+        req.size.gradation = float(gradation)
     if bbox is not None:
         (x0, y0), (x1, y1) = bbox
         req.bbox.min.CopyFrom(geometry_pb2.Vec2(x=float(x0), y=float(y0)))

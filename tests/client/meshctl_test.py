@@ -310,6 +310,57 @@ def test_sdf_grid(c):
     assert "--sdf-grid-spacing: must be > 0" in r.stderr, r.stderr
 
 
+def mean_edges(path):
+    """Mean edge length of the triangles left of x = -1 and right of x = 1, or None without
+    meshio."""
+    try:
+        import meshio
+    except ImportError:
+        return None
+    with contextlib.redirect_stdout(io.StringIO()):
+        mesh = meshio.read(path)
+    left, right = [], []
+    for tri in mesh.cells_dict["triangle"]:
+        for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+            (xa, ya), (xb, yb) = mesh.points[a][:2], mesh.points[b][:2]
+            length, mid = ((xa - xb) ** 2 + (ya - yb) ** 2) ** 0.5, (xa + xb) / 2
+            (left if mid < -1 else right if mid > 1 else []).append(length)
+    return sum(left) / len(left), sum(right) / len(right)
+
+
+def test_size_grid(c):
+    """--size-grid with a .npy: a 4 x 2 rectangle, sizes 1 on the left to 3 on the right (edges
+    growing by 0.05 per unit at h0 0.1); then --gradation 0.02, which slows that growth, and the
+    errors: no origin, a NaN in the file (the index named), a gradation out
+    of the server's range (the field named)."""
+    rows = [[1 + 0.5 * i for i in range(5)] for _ in range(3)]  # [j][i], x = -2 + i, y = -1 + j
+    write_npy(c.path("sizes.npy"), rows)
+    grid = ["--size-grid", "sizes.npy", "--size-grid-origin", "-2,-1", "--size-grid-spacing", "1"]
+    base = ["generate", "--rectangle", "4,2", "--h0", "0.1"]
+    uniform = summary_nodes(c.expect(OK, *base).stdout)
+    r = c.expect(OK, *base, *grid, "-o", "grid.vtu")
+    graded = summary_nodes(r.stdout)
+    # 1 / h^2 integrates to a third of the rectangle's area.
+    assert 0.25 * uniform < graded < 0.45 * uniform, f"{graded} nodes, uniform {uniform}"
+    edges = mean_edges(c.path("grid.vtu"))
+    if edges is not None:  # h averages 1.25 left of x = -1, 2.75 right of x = 1
+        assert 1.8 < edges[1] / edges[0] < 2.6, f"mean edges left, right: {edges}"
+    limited = summary_nodes(c.expect(OK, *base, *grid, "--gradation", "0.02").stdout)
+    assert limited > 1.2 * graded, f"{limited} nodes with --gradation, {graded} without"
+    print(f"  uniform {uniform} nodes, grid {graded}, grid with gradation {limited}; "
+          f"edges left, right {edges}")
+
+    r = c.expect(BAD_REQUEST, *base, "--size-grid", "sizes.npy", "--size-grid-spacing", "1")
+    assert "--size-grid-origin:" in r.stderr and "required" in r.stderr, r.stderr
+    rows[1][2] = float("nan")
+    write_npy(c.path("holes.npy"), rows)
+    r = c.expect(BAD_REQUEST, *base, *grid[:1], "holes.npy", *grid[2:])
+    assert "--size-grid:" in r.stderr and "holes.npy" in r.stderr and "[1, 2]" in r.stderr, \
+        r.stderr
+    r = c.expect(BAD_REQUEST, *base, *grid, "--gradation", "20")
+    assert "size.gradation" in r.stderr and "(0, 10]" in r.stderr, r.stderr
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -337,8 +388,8 @@ def test_not_serving_while_draining(c):
 TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test_bad_request,
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
-         test_output_file_error, test_import, test_request, test_sdf_grid, test_help,
-         test_not_serving_while_draining]
+         test_output_file_error, test_import, test_request, test_sdf_grid, test_size_grid,
+         test_help, test_not_serving_while_draining]
 
 
 def main():

@@ -447,6 +447,85 @@ TEST(GpuIndexedGeometry, ManyHolesAndALongPolygonMatchTheCpuEngine) {
   EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
 }
 
+// Gridded size fields on the device (size_eval.cuh reads the grid that load_problem uploads):
+// a 2 x 1 rectangle minus a disk, with a grid term (a smooth bump, 21 x 11 samples, its border
+// extended beyond x = 1.6) and a distance term about the disk; then the same field limited by a
+// gradation (one grid term over the whole box). The initial points, one step on random points
+// and whole meshes agree with the CPU engine's.
+CompiledProblem gridded_problem(double gradation) {
+  Problem p;
+  p.geometry = Shape{Csg{CsgOp::kDifference,
+                         {Shape{Rectangle{{0, 0}, {2, 1}}, "outer", ""},
+                          Shape{Circle{{1.4, 0.5}, 0.2}, "hole", ""}}},
+                     "", ""};
+  GridSize grid;
+  grid.origin = {0, 0};
+  grid.spacing = {0.08, 0.1};
+  grid.nx = 21;
+  grid.ny = 11;
+  for (uint32_t j = 0; j < grid.ny; ++j)
+    for (uint32_t i = 0; i < grid.nx; ++i)
+      grid.values.push_back(
+          static_cast<float>(1.5 + std::sin(3.0 * i * 0.08) * std::cos(2.0 * j * 0.1)));
+  p.size.terms.push_back(grid);
+  DistanceSize near_hole;
+  near_hole.shape = Shape{Circle{{1.4, 0.5}, 0.2}, "hole", ""};
+  near_hole.h_min = 0.7;
+  near_hole.slope = 3.0;
+  near_hole.h_max = 3.0;
+  p.size.terms.push_back(near_hole);
+  p.size.gradation = gradation;
+  p.h0 = 0.04;
+  return compile_problem(p);
+}
+
+TEST(GpuGridSize, GriddedAndGradedSizeFieldsMatchTheCpuEngine) {
+  SKIP_WITHOUT_GPU();
+  ThreadPool pool;
+  for (const double gradation : {0.0, 0.05}) {
+    SCOPED_TRACE("gradation " + std::to_string(gradation));
+    const CompiledProblem c = gridded_problem(gradation);
+    ASSERT_NE(c.size.terms[0].grid, kNoGrid);
+    ASSERT_EQ(c.size.terms.size(), gradation > 0 ? 1u : 2u);
+    {
+      CpuEngine cpu(pool);
+      GpuEngine gpu(0);
+      const int64_t n_cpu = cpu.initialize(c), n_gpu = gpu.initialize(c);
+      EXPECT_NEAR(n_gpu, n_cpu, std::max<int64_t>(2, n_cpu / 1000));
+    }
+    {
+      const auto pts = random_points(c, 3000, 11);
+      CpuEngine cpu(pool);
+      GpuEngine gpu(0);
+      load_and_triangulate(c, pts, {&cpu, &gpu});
+      const StepResult sc = cpu.move_points(), sg = gpu.move_points();
+      EXPECT_NEAR(sc.max_move, sg.max_move, 1e-9);
+      std::vector<Vec2> a, b;
+      cpu.read_points(a);
+      gpu.read_points(b);
+      ASSERT_EQ(a.size(), b.size());
+      double worst_interior = 0.0;
+      for (size_t i = 0; i < a.size(); ++i)
+        if (std::fabs(eval_sdf(c.geometry.view(), a[i])) >= 1e-3 * c.h0)
+          worst_interior = std::max(worst_interior, norm(a[i] - b[i]));
+      EXPECT_LT(worst_interior, 1e-12 * c.h0);
+    }
+    CpuEngine cpu(pool);
+    GpuEngine gpu(0);
+    const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
+    const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
+    const auto validity = check_validity(rg.mesh);
+    EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
+    EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
+                static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
+    EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
+    EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
+    EXPECT_GE(rg.quality.q_min, 0.65);
+    EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
+    EXPECT_TRUE(rg.stats.converged);
+  }
+}
+
 TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
   SKIP_WITHOUT_GPU();
   const CompiledProblem c = compiled("G5", 5000);

@@ -90,9 +90,10 @@ def test_primitives_and_transforms(examples):
     sdf = np.array([[-1.0, -0.5, 0.25], [0.5, 1.0, 2.0]])
     g = meshd.distance_grid(sdf, spacing=(0.5, 2), origin=(1, -1), name="img").proto
     assert g.name == "img" and (g.distance_grid.nx, g.distance_grid.ny) == (3, 2)
-    assert (g.distance_grid.dx, g.distance_grid.dy, g.distance_grid.origin.x) == (0.5, 2, 1)
+    dg = g.distance_grid
+    assert (dg.spacing.x, dg.spacing.y, dg.origin.x) == (0.5, 2, 1)
     assert list(g.distance_grid.values) == [-1.0, -0.5, 0.25, 0.5, 1.0, 2.0]
-    assert meshd.distance_grid([[-1, 1], [1, 1]], spacing=0.1).proto.distance_grid.dy == 0.1
+    assert meshd.distance_grid([[-1, 1], [1, 1]], spacing=0.1).proto.distance_grid.spacing.y == 0.1
     try:
         meshd.distance_grid([1.0, -1.0])
         raise AssertionError("a 1-D grid was accepted")
@@ -127,6 +128,26 @@ def test_request_fields(examples):
             raise AssertionError(f"request accepted {kwargs}")
         except error as e:
             assert list(kwargs)[0] in str(e) or "tpu" in str(e), str(e)
+
+
+def test_size_grid(examples):
+    """meshd.grid: a 2-D array indexed [j, i] becomes a GridSize row by row; gradation goes to
+    the size field; meshd.feature fills a FeatureSize."""
+    h = [[1, 2, 3], [4, 5, 6]]  # 2 rows (y), 3 columns (x)
+    req = meshd.request(meshd.rectangle((0, 0), (2, 1)), h0=0.1,
+                        size=[meshd.grid(h, origin=(0, 0), spacing=(1, 1)), 2], gradation=0.3)
+    g = req.size.terms[0].grid
+    assert (g.nx, g.ny, g.spacing.x, g.spacing.y) == (3, 2, 1, 1), g
+    assert list(g.values) == [1, 2, 3, 4, 5, 6], list(g.values)
+    assert req.size.terms[1].uniform.value == 2 and req.size.gradation == 0.3
+    assert meshd.grid(h, (0, 0), 0.5).grid.spacing.y == 0.5
+    f = meshd.feature(3, h_min=0.5, h_max=10).feature
+    assert (f.elements, f.h_min, f.h_max) == (3, 0.5, 10), f
+    try:
+        meshd.grid([1, 2, 3], (0, 0), 1)
+        raise AssertionError("a 1-D grid was accepted")
+    except ValueError as e:
+        assert "2-D" in str(e), str(e)
 
 
 def test_error_parsing(examples):
@@ -194,7 +215,8 @@ def main():
     parser.add_argument("--examples", required=True)
     args = parser.parse_args()
     return run_checks([test_installed_package, test_examples_from_builders, test_operators,
-                       test_primitives_and_transforms, test_request_fields, test_error_parsing,
+                       test_primitives_and_transforms, test_request_fields, test_size_grid,
+                       test_error_parsing,
                        test_event_decoder], args.examples)
 
 

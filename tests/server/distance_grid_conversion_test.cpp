@@ -22,11 +22,12 @@ v1::MeshRequest disk_grid_request(uint32_t n = 31) {
   g->set_ny(n);
   g->mutable_origin()->set_x(-1.5);
   g->mutable_origin()->set_y(-1.5);
-  g->set_dx(3.0 / (n - 1));
-  g->set_dy(3.0 / (n - 1));
+  g->mutable_spacing()->set_x(3.0 / (n - 1));
+  g->mutable_spacing()->set_y(3.0 / (n - 1));
   for (uint32_t j = 0; j < n; ++j)
     for (uint32_t i = 0; i < n; ++i)
-      g->add_values(static_cast<float>(std::hypot(-1.5 + i * g->dx(), -1.5 + j * g->dy()) - 1));
+      g->add_values(static_cast<float>(
+          std::hypot(-1.5 + i * g->spacing().x(), -1.5 + j * g->spacing().y()) - 1));
   return request;
 }
 
@@ -92,20 +93,20 @@ TEST(DistanceGridConversion, NonFiniteValueNamesTheFirstBadIndex) {
 
 TEST(DistanceGridConversion, BadSpacingAndOrigin) {
   v1::MeshRequest r = disk_grid_request();
-  grid_of(r).set_dx(0);
-  expect_invalid(r, "geometry.distance_grid.dx", "must be finite and > 0 (got 0)");
+  grid_of(r).mutable_spacing()->set_x(0);
+  expect_invalid(r, "geometry.distance_grid.spacing.x", "must be finite and > 0 (got 0)");
   r = disk_grid_request();
-  grid_of(r).set_dy(-0.1);
-  expect_invalid(r, "geometry.distance_grid.dy", "must be finite and > 0 (got -0.1)");
+  grid_of(r).mutable_spacing()->set_y(-0.1);
+  expect_invalid(r, "geometry.distance_grid.spacing.y", "must be finite and > 0 (got -0.1)");
   r = disk_grid_request();
-  grid_of(r).set_dy(std::numeric_limits<double>::infinity());
-  expect_invalid(r, "geometry.distance_grid.dy", "(got inf)");
+  grid_of(r).mutable_spacing()->set_y(std::numeric_limits<double>::infinity());
+  expect_invalid(r, "geometry.distance_grid.spacing.y", "(got inf)");
   r = disk_grid_request();
   grid_of(r).mutable_origin()->set_y(std::nan(""));
   expect_invalid(r, "geometry.distance_grid.origin.y", "must be finite (got nan)");
   r = disk_grid_request();
-  grid_of(r).set_dx(1e307);
-  expect_invalid(r, "geometry.distance_grid", "far corner");
+  grid_of(r).mutable_spacing()->set_x(1e307);
+  expect_invalid(r, "geometry.distance_grid.spacing", "far corner");
 }
 
 TEST(DistanceGridConversion, NoNegativeValueIsAnEmptyDomain) {
@@ -120,14 +121,14 @@ TEST(DistanceGridConversion, SamplesAboveTheLimitAreResourceExhausted) {
   EXPECT_NO_THROW(to_problem(disk_grid_request(), limits));
   limits.max_grid_samples = 960;
   expect_error(disk_grid_request(), ErrorCode::kResourceExhausted, "geometry.distance_grid.values",
-               "more than the server's limit of 960", limits);
+               "may hold 960 together", limits);
   // nx * ny counts, not the values sent: a header that claims 10^10 samples is refused before
   // anything is read or allocated for it.
   v1::MeshRequest huge = disk_grid_request();
   grid_of(huge).set_nx(100'000);
   grid_of(huge).set_ny(100'000);
   expect_error(huge, ErrorCode::kResourceExhausted, "geometry.distance_grid.values",
-               "hold 10000000000 samples");
+               "nx * ny = 10000000000 samples");
   // The limit is on all the grids of a tree together, and named at the grid that crosses it.
   v1::MeshRequest two;
   two.set_h0(0.1);
@@ -136,7 +137,7 @@ TEST(DistanceGridConversion, SamplesAboveTheLimitAreResourceExhausted) {
   *shapes->Add() = disk_grid_request().geometry();
   limits.max_grid_samples = 1500;
   expect_error(two, ErrorCode::kResourceExhausted, "geometry.union.shapes[1].distance_grid.values",
-               "hold 1922 samples", limits);
+               "may hold 1500 together (earlier ones hold 961)", limits);
 }
 
 TEST(DistanceGridConversion, TransformedAndNamedLikeOtherShapes) {

@@ -67,6 +67,8 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
                                  "10",
                                  "--max-grid-samples",
                                  "4096",
+                                 "--max-size-grid-values",
+                                 "2500",
                                  "--log-level",
                                  "debug"});
   EXPECT_EQ(o.listen, "0.0.0.0:0");
@@ -82,6 +84,7 @@ TEST(ServerOptions, FlagsAndTheirEqualsForm) {
   EXPECT_EQ(o.jobs.limits.max_nodes, 1000);
   EXPECT_EQ(o.jobs.limits.max_snapshot_nodes, 10);
   EXPECT_EQ(o.jobs.limits.max_grid_samples, 4096);
+  EXPECT_EQ(o.jobs.limits.max_size_grid_values, 2500);
   EXPECT_EQ(o.log_level, "debug");
 }
 

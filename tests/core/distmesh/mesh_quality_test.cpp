@@ -208,8 +208,14 @@ TEST(GenerateMesh, SizeFieldScaleIsPartOfTheEdgeLength) {
               t.h_min *= 0.5;
               t.slope *= 0.5;
               t.h_max *= 0.5;
-            } else {
+            } else if constexpr (std::is_same_v<std::decay_t<decltype(t)>, UniformSize>) {
               t.value *= 0.5;
+            } else if constexpr (std::is_same_v<std::decay_t<decltype(t)>, GridSize>) {
+              t.scale *= 0.5;
+            } else {  // a feature-size term: twice the elements across
+              t.elements *= 2;
+              t.h_min *= 0.5;
+              t.h_max *= 0.5;
             }
           },
           term);

@@ -1,4 +1,4 @@
-#include "server/field_values.h"
+#include "server/field_checks.h"
 
 #include <charconv>
 #include <cmath>
@@ -16,6 +16,10 @@ std::string num(double v) {
 }
 
 std::string got(double v) { return " (got " + num(v) + ")"; }
+
+std::string at(const std::string& path, const char* field, int index) {
+  return path + "." + field + "[" + std::to_string(index) + "]";
+}
 
 double finite(double v, const std::string& field) {
   if (!std::isfinite(v)) throw_invalid(field, "must be finite" + got(v));
