@@ -18,12 +18,15 @@ for step in "${steps[@]}"; do
       $run kernels_gpu_engine_test 2>&1 | tee "$out/gpu_tests.log" | tail -25 ;;
     sanitize)
       san=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
-      filter='Geometries/GpuAgreement.OneStep*:Geometries/GpuAgreement.Density*:Geometries/GpuAgreement.Initial*:GpuEngine.*:*Repair*/1'
+      # MESHD_SANITIZE_FILTER narrows both tools to some tests (e.g. a new kernel's).
+      filter=${MESHD_SANITIZE_FILTER:-'Geometries/GpuAgreement.OneStep*:Geometries/GpuAgreement.Density*:Geometries/GpuAgreement.Initial*:GpuEngine.*:*Repair*/1'}
       # memcheck with the step graph, also over whole meshes of G1 and G5 (node removal,
       # completion). racecheck crashes on graphs with conditional nodes (compute-sanitizer
       # 2025.3), so it runs the step's kernels launched one by one; over a whole mesh it takes ten
       # minutes.
-      runs=("memcheck 1 $filter:*StepGraph*:*WholeMesh*/0:*WholeMesh*/4"
+      whole='*StepGraph*:*WholeMesh*/0:*WholeMesh*/4'
+      [ -n "${MESHD_SANITIZE_FILTER:-}" ] && whole=''
+      runs=("memcheck 1 $filter${whole:+:$whole}"
             "racecheck 0 $filter")
       for run_args in "${runs[@]}"; do
         read -r tool graph tests <<< "$run_args"
@@ -77,7 +80,7 @@ for step in "${steps[@]}"; do
       done ;;
     primitives)
       # Trees of many shapes and long polygons (bench/many_primitives.py) at equal node counts,
-      # GPU and CPU (all cores) on the same host: what the spatial indexes keep per iteration.
+      # on the GPU (primitives_cpu: the same on the CPU cores): what the spatial indexes keep.
       dir=$(mktemp -d)
       python3 "$here/bench/many_primitives.py" "$dir"
       reqs="$dir/holes_10.textproto $dir/holes_100.textproto $dir/holes_1000.textproto
