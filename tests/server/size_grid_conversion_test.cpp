@@ -80,7 +80,7 @@ TEST(SizeGridConversion, EachBadFieldIsNamedWithItsRange) {
   {
     v1::MeshRequest r = square_with_grid();
     grid_of(r).set_nx(1);
-    expect_error(r, invalid, g + ".nx", "must be >= 2 (got 1)");
+    expect_error(r, invalid, g + ".nx", "must be >= 2 (samples along that axis; got 1)");
   }
   {
     v1::MeshRequest r = square_with_grid();
