@@ -1,6 +1,7 @@
 // meshctl's command line: the command, its arguments and flags, and the help text of each.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ struct CliOptions {
   std::optional<double> simplify;   // --simplify F: tolerance F * h0
   std::string import_name;          // --import-name; empty: the layer's name
   bool subtract_from_clip = false;  // --subtract-from-clip: the geometry is the clip box minus it
+  // --grade H_MIN,SLOPE,H_MAX: a size term h = min(H_MAX, H_MIN + SLOPE |d|) about the import
+  // (relative sizes; SLOPE per unit of the output CRS).
+  std::optional<std::array<double, 3>> grade;
   // list
   std::string state;
 };
