@@ -28,6 +28,7 @@ import json
 import math
 import subprocess
 import sys
+import tempfile
 from collections import defaultdict
 
 from osgeo import ogr, osr
@@ -38,10 +39,16 @@ ogr.UseExceptions()
 QUANTUM = 1e-7  # degrees; GSHHG's own resolution is coarser than this
 
 
+def gmt(args, **kw):
+    """Runs GMT in a scratch directory, where it leaves its gmt.history."""
+    with tempfile.TemporaryDirectory() as scratch:
+        return subprocess.run(["gmt"] + args, check=True, capture_output=True, text=True,
+                              cwd=scratch, **kw).stdout
+
+
 def dump_shorelines(region, resolution):
     """Step 1: the level-1 shoreline pieces as lists of (lon, lat)."""
-    out = subprocess.run(["gmt", "coast", f"-R{region}", f"-D{resolution}", "-M", "-W1/0.1p",
-                          "-A0/1/1"], check=True, capture_output=True, text=True).stdout
+    out = gmt(["coast", f"-R{region}", f"-D{resolution}", "-M", "-W1/0.1p", "-A0/1/1"])
     pieces, piece = [], None
     for line in out.splitlines():
         if line.startswith(">"):
@@ -109,9 +116,8 @@ def land_faces(faces, region, resolution):
     for i, f in enumerate(faces):
         p = f.PointOnSurface()
         points.append(f"{p.GetX():.10f} {p.GetY():.10f} {i}")
-    out = subprocess.run(["gmt", "select", f"-R{region}", f"-D{resolution}", "-Ns/k/k/k/k"],
-                         input="\n".join(points) + "\n", check=True, capture_output=True,
-                         text=True).stdout
+    out = gmt(["select", f"-R{region}", f"-D{resolution}", "-Ns/k/k/k/k"],
+              input="\n".join(points) + "\n")
     keep = {int(float(line.split()[2])) for line in out.splitlines() if line.strip()}
     return [f for i, f in enumerate(faces) if i in keep]
 
