@@ -171,16 +171,22 @@ def write_geo(path, land, clip, h0, grade):
     sea = box.Difference(union.UnionCascaded())
     on_box = lambda a, b: (a[0] == b[0] and a[0] in (clip[0], clip[2])) or \
         (a[1] == b[1] and a[1] in (clip[1], clip[3]))
-    points, shore, edge, surfaces = [], [], [], []
+    # Rings of the sea may touch at a vertex (two islands meeting at a point): one Gmsh point
+    # there, or Gmsh cannot recover the boundary.
+    points, index, shore, edge, surfaces = [], {}, [], [], []
     for poly in polygons_of(sea):
         loops = []
         for i in range(poly.GetGeometryCount()):
             ring = ring_vertices(poly.GetGeometryRef(i), 0)
-            first = len(points)
-            points.extend(ring)
+            ids = []
+            for p in ring:
+                if p not in index:
+                    index[p] = len(points)
+                    points.append(p)
+                ids.append(index[p])
             loop = []
             for k in range(len(ring)):
-                a, b = first + k, first + (k + 1) % len(ring)
+                a, b = ids[k], ids[(k + 1) % len(ring)]
                 (edge if on_box(points[a], points[b]) else shore).append((a, b))
                 loop.append((a, b))
             loops.append(loop)
