@@ -43,7 +43,7 @@ WORK=${WORK:-$here/data}
 prefix=${1:-$WORK/archipelago}
 REGION=${REGION:-19.3/23.2/59.5/60.8}
 H0=${H0:-200} SIMPLIFY=${SIMPLIFY:-1} OPEN=${OPEN:-1} GRADE=${GRADE:-1,0.00025,8}
-MIN_ISLAND=${MIN_ISLAND:-$(echo "(2 * $H0)^2" | bc -l)}
+MIN_ISLAND=${MIN_ISLAND:-$(awk -v h="$H0" 'BEGIN { print (2 * h) ^ 2 }')}
 MESHD=${MESHD:-build/bin/meshd} MESHCTL=${MESHCTL:-build/bin/meshctl}
 GMSH=${GMSH:-gmsh} PYTHON=${PYTHON:-/usr/bin/python3}
 mkdir -p "$(dirname "$prefix")"
