@@ -75,7 +75,7 @@ tmp=$(mktemp -d)
 meshd_pid=$!
 trap 'kill $meshd_pid 2>/dev/null; wait $meshd_pid 2>/dev/null; rm -rf "$tmp"' EXIT
 port=
-for _ in $(seq 100); do
+for _ in $(seq 300); do  # up to a minute on a busy machine
   port=$(sed -n 's/.*meshd listening on .*(port \([0-9]*\)).*/\1/p' "$tmp/meshd.log")
   [[ -n $port ]] && "$MESHCTL" --server "127.0.0.1:$port" health >/dev/null 2>&1 && break
   sleep 0.2

@@ -27,7 +27,7 @@ rm -rf "$work" && mkdir -p "$work"
 pid=$!
 trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null || true' EXIT
 port=
-for _ in $(seq 100); do
+for _ in $(seq 300); do  # up to a minute on a busy machine
   port=$(sed -n 's/.*meshd listening on .*(port \([0-9]*\)).*/\1/p' "$work/meshd.log")
   [[ -n $port ]] && "$meshctl" --server "127.0.0.1:$port" health >/dev/null 2>&1 && break
   sleep 0.2
