@@ -29,17 +29,24 @@ int integer(const std::string& flag, const std::string& v) {
   return static_cast<int>(x);
 }
 
-// "xmin,ymin,xmax,ymax" with min < max.
-std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
-  std::array<double, 4> box{};
+// N comma-separated numbers; `names` says which ("xmin,ymin,xmax,ymax") when they are not.
+template <size_t N>
+std::array<double, N> numbers(const std::string& flag, const std::string& v, const char* names) {
+  std::array<double, N> x{};
   size_t start = 0;
-  for (size_t k = 0; k < 4; ++k) {
-    const size_t comma = k < 3 ? v.find(',', start) : v.size();
-    if (comma == std::string::npos || (k == 3 && v.find(',', start) != std::string::npos))
-      throw_invalid(flag, "expects xmin,ymin,xmax,ymax (got " + quote_input(v) + ")");
-    box[k] = number(flag, v.substr(start, comma - start));
+  for (size_t k = 0; k < N; ++k) {
+    const size_t comma = k + 1 < N ? v.find(',', start) : v.size();
+    if (comma == std::string::npos || (k + 1 == N && v.find(',', start) != std::string::npos))
+      throw_invalid(flag, std::string("expects ") + names + " (got " + quote_input(v) + ")");
+    x[k] = number(flag, v.substr(start, comma - start));
     start = comma + 1;
   }
+  return x;
+}
+
+// "xmin,ymin,xmax,ymax" with min < max.
+std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
+  const auto box = numbers<4>(flag, v, "xmin,ymin,xmax,ymax");
   if (!(box[0] < box[2] && box[1] < box[3]))
     throw_invalid(flag, "needs xmin < xmax and ymin < ymax (got " + quote_input(v) + ")");
   return box;
@@ -47,10 +54,8 @@ std::array<double, 4> clip_box(const std::string& flag, const std::string& v) {
 
 // "a,b" (`form` names them in the message, e.g. "x,y" or "W,H").
 Vec2 pair(const std::string& flag, const std::string& v, const char* form = "x,y") {
-  const auto comma = v.find(',');
-  if (comma == std::string::npos || v.find(',', comma + 1) != std::string::npos)
-    throw_invalid(flag, std::string("expects ") + form + " (got " + quote_input(v) + ")");
-  return {number(flag, v.substr(0, comma)), number(flag, v.substr(comma + 1))};
+  const auto xy = numbers<2>(flag, v, form);
+  return {xy[0], xy[1]};
 }
 
 // "d" or "dx,dy", each > 0: the distance between a grid's samples.
@@ -165,7 +170,12 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.size_grid.spacing = spacing(a, next());
     else if (a == "--gradation")
       o.gradation = number(a, next());
-    else if (a == "--state")
+    else if (a == "--grade") {
+      o.grade = numbers<3>(a, next(), "h_min,slope,h_max");
+      const auto [h_min, slope, h_max] = *o.grade;
+      if (!(h_min > 0 && slope >= 0 && h_max >= h_min))
+        throw_invalid(a, "needs h_min > 0, slope >= 0 and h_max >= h_min");
+    } else if (a == "--state")
       o.state = next();
     else if (!a.empty() && a[0] == '-')
       throw_invalid(a, "unknown flag; see meshctl --help");
@@ -217,6 +227,9 @@ Import (a polygon layer of a GeoJSON, Shapefile, GeoPackage, KML, DXF, ... file,
   --subtract-from-clip     the geometry is the clip box minus the import (the sea round land)
   --simplify F             simplify, keeping topology, to a tolerance of F * h0; rings of
                            less area than the tolerance squared are dropped and counted
+  --grade H_MIN,SLOPE,H_MAX    add a size term graded with the distance d to the import's
+                           outline: h0 * min(H_MAX, H_MIN + SLOPE * d), SLOPE per output-CRS
+                           unit (a coast at H_MIN that grows offshore)
   --to-crs CRS             output CRS (EPSG:NNNN, WKT, PROJ); default: the UTM zone of the
                            data's centre for data in degrees, else the file's CRS; 'none' keeps
                            the coordinates as they are
@@ -250,6 +263,8 @@ Job options (override the file's):
            "  meshctl generate --import examples/gis/island.geojson --h0 500 -o island.msh\n"
            "  meshctl generate --import coast.gpkg --layer land --subtract-from-clip \\\n"
            "      --clip 290000,4385000,390000,4460000 --simplify 0.5 --h0 500 -o sea.msh\n"
+           "  meshctl generate --import coast.gpkg --clip 290000,4385000,390000,4460000 \\\n"
+           "      --subtract-from-clip --h0 250 --grade 1,0.0005,8 -o graded_sea.msh\n"
            "  meshctl generate examples/gis/island_ocean.textproto \\\n"
            "      --import examples/gis/island.geojson -o ocean.msh\n"
            "  meshctl generate --rectangle 4,2 --h0 0.02 --size-grid sizes.npy \\\n"

@@ -1,6 +1,7 @@
 // meshctl's command line: the command, its arguments and flags, and the help text of each.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,9 @@ struct CliOptions {
   // size field's gradation (--gradation G).
   SizeGridOptions size_grid;
   std::optional<double> gradation;
+  // --grade H_MIN,SLOPE,H_MAX: a size term h = min(H_MAX, H_MIN + SLOPE |d|) about the import
+  // (relative sizes; SLOPE per unit of the output CRS).
+  std::optional<std::array<double, 3>> grade;
   // list
   std::string state;
 };

@@ -56,7 +56,8 @@ void check_no_import_flags(const CliOptions& o) {
       {!o.gis.layer.empty(), "--layer"},         {!o.gis.where.empty(), "--where"},
       {o.gis.clip.has_value(), "--clip"},        {o.simplify.has_value(), "--simplify"},
       {!o.gis.from_crs.empty(), "--from-crs"},   {!o.gis.to_crs.empty(), "--to-crs"},
-      {!o.import_name.empty(), "--import-name"}, {o.subtract_from_clip, "--subtract-from-clip"}};
+      {!o.import_name.empty(), "--import-name"}, {o.subtract_from_clip, "--subtract-from-clip"},
+      {o.grade.has_value(), "--grade"}};
   for (const auto& [given, flag] : flags) {
     if (given) throw_invalid(flag, "only with --import FILE");
   }
@@ -97,6 +98,14 @@ void import_into(const CliOptions& o, v1::MeshRequest& request, std::string* sum
   } else if (replace_placeholders(request, name, shape) == 0) {
     throw_invalid("request", o.args[0] + " has no placeholder for the import: a shape with only " +
                                  "name: \"" + name + "\" (no kind) where the outline goes");
+  }
+  if (o.grade) {
+    // A size term about the same shape; the server judges the field's ratio against its limit.
+    v1::DistanceSize* term = request.mutable_size()->add_terms()->mutable_distance();
+    *term->mutable_shape() = shape;
+    term->set_h_min((*o.grade)[0]);
+    term->set_slope((*o.grade)[1]);
+    term->set_h_max((*o.grade)[2]);
   }
   if (summary != nullptr) {
     size_t holes = 0;

@@ -11,7 +11,8 @@ packages=(
   libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev prometheus-cpp-dev libssl-dev
   python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl valgrind
   python3-numpy python3-venv python3-setuptools python3-wheel
-  libgdal-dev gdal-bin
+  libgdal-dev gdal-bin python3-gdal
+  gmt gmt-gshhg-high
 )
 [ "${1:-}" = "--fuzz" ] && packages+=("${fuzz_packages[@]}")
 missing=()

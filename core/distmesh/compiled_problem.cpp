@@ -89,11 +89,13 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
     }
   }
   // Where two primitives' boundaries cross on the final boundary, it turns: a corner too. Two
-  // zigzag polygons can cross each other a million times; past kMaxCrossingCorners the request
-  // is refused rather than pinned node by node.
+  // zigzag polygons can cross each other a million times; past kMaxCrossingCorners crossings the
+  // request is refused rather than pinned node by node. The polygons' own corners do not count:
+  // a real coastline has tens of thousands, as many as its outline has vertices.
+  const size_t vertex_corners = corners.size();
   for (Vec2 v : boundary_crossings(geometry, bbox)) {
     add_if_on_boundary(v);
-    if (corners.size() > kMaxCrossingCorners) {
+    if (corners.size() - vertex_corners > kMaxCrossingCorners) {
       throw_invalid("geometry", "its primitives' boundaries cross at more than " +
                                     std::to_string(kMaxCrossingCorners) +
                                     " corners of the domain (at most " +

@@ -38,7 +38,7 @@ SizeFieldSpec sampled_size_field(const Problem& problem);
 // The corners of `geometry`'s final boundary (|d| tiny there): polygon and rectangle vertices
 // where the outline turns by kMinCrossingDegrees or more, and the crossings of two primitives'
 // boundaries (boundary_crossings.h).
-// Throws Error(kInvalidArgument) on field "geometry" past kMaxCrossingCorners corners.
+// Throws Error(kInvalidArgument) on field "geometry" past kMaxCrossingCorners crossings.
 std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox);
 constexpr size_t kMaxCrossingCorners = 20000;
 

@@ -569,6 +569,32 @@ TEST(GisImportRequest, SimplifyToleranceIsTimesH0) {
   EXPECT_GE(coarse, 10);
 }
 
+TEST(GisImportRequest, GradeAddsADistanceTermAboutTheImport) {
+  TempDir dir;
+  const std::string path = square_with_hole(dir);
+  const v1::MeshRequest request = build_request(
+      parse_cli({"generate", "--import", path, "--h0", "5", "--clip",
+                 "499990,5499990,500050,5500200", "--subtract-from-clip", "--grade", "1,0.02,6"}));
+  ASSERT_EQ(request.size().terms_size(), 1);
+  const v1::DistanceSize& term = request.size().terms(0).distance();
+  EXPECT_EQ(term.h_min(), 1);
+  EXPECT_EQ(term.slope(), 0.02);
+  EXPECT_EQ(term.h_max(), 6);
+  // The same shape as the one subtracted from the clip box.
+  EXPECT_EQ(term.shape().SerializeAsString(),
+            request.geometry().difference().subtract(0).SerializeAsString());
+
+  for (const std::string grade : {"1,0.02", "0,0.02,6", "1,-1,6", "2,0.1,1", "1,x,2"}) {
+    SCOPED_TRACE(grade);
+    invalid([&] { parse_cli({"generate", "--import", path, "--grade", grade}); }, "--grade");
+  }
+  invalid(
+      [&] {
+        build_request(parse_cli({"generate", "--circle", "1", "--h0", "1", "--grade", "1,0.1,2"}));
+      },
+      "--grade");
+}
+
 TEST(GisImportRequest, PlaceholdersOfARequestFileAreFilled) {
   TempDir dir;
   const std::string shape_path = square_with_hole(dir);

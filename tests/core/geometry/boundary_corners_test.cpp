@@ -241,5 +241,20 @@ TEST(BoundaryCorners, TooManyCrossingsAreRefusedNamingTheGeometry) {
   }
 }
 
+TEST(BoundaryCorners, ManyPolygonCornersAreNoCrossings) {
+  // A jagged ring of 30,000 vertices (radius 1 and 0.99 in turn, as a raw coastline zigzags)
+  // inside a rectangle: every vertex a corner, past kMaxCrossingCorners, and no crossing.
+  constexpr int kVertices = 30000;
+  Polygon ring;
+  for (int k = 0; k < kVertices; ++k) {
+    const double a = 2 * kPi * k / kVertices, r = k % 2 == 0 ? 1.0 : 0.99;
+    ring.vertices.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  const Shape sea = csg(CsgOp::kDifference,
+                        {rectangle({-2, -2}, {2, 2}), Shape{std::move(ring), "", ""}});
+  const auto c = corners_of(sea);
+  EXPECT_EQ(c.size(), static_cast<size_t>(kVertices) + 4);
+}
+
 }  // namespace
 }  // namespace meshd
