@@ -11,9 +11,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <sstream>
 
+#include "client/quiet_gdal.h"
 #include "core/common/error.h"
 
 namespace meshd::cli {
@@ -21,30 +21,6 @@ namespace meshd::cli {
 namespace {
 
 constexpr const char* kField = "--import";
-
-// ---------------------------------------------------------------------------------------------
-// GDAL plumbing: registration once, its messages kept off stderr and quoted in ours instead.
-
-void register_drivers() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-// While alive, GDAL's errors and warnings are not printed; last_message() gives the latest.
-class QuietGdal {
- public:
-  QuietGdal() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdal() { CPLPopErrorHandler(); }
-  QuietGdal(const QuietGdal&) = delete;
-  QuietGdal& operator=(const QuietGdal&) = delete;
-  static std::string last_message() {
-    const char* m = CPLGetLastErrorMsg();
-    return m != nullptr ? m : "";
-  }
-};
 
 struct CtDeleter {
   void operator()(OGRCoordinateTransformation* ct) const {
@@ -397,7 +373,6 @@ ImportedLayer import_polygons(const GisImportOptions& o) {
   }
   if (!(o.simplify_tolerance >= 0 && std::isfinite(o.simplify_tolerance)))
     throw_invalid("--simplify", "the tolerance must be finite and >= 0");
-  register_drivers();
   const QuietGdal quiet;
   std::error_code ignored;
   if (!std::filesystem::exists(o.path, ignored))

@@ -5,30 +5,18 @@
 
 #include <cmath>
 #include <filesystem>
-#include <mutex>
 
+#include "client/quiet_gdal.h"
 #include "core/common/error.h"
 
 namespace meshd::cli {
 namespace {
 
-// GDAL's messages are kept off stderr while reading and quoted in ours instead.
-class QuietGdal {
- public:
-  QuietGdal() {
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdal() { CPLPopErrorHandler(); }
-  QuietGdal(const QuietGdal&) = delete;
-  QuietGdal& operator=(const QuietGdal&) = delete;
-  static std::string last_message() {
-    const char* m = CPLGetLastErrorMsg();
-    return m != nullptr && *m != '\0' ? std::string(": ") + m : "";
-  }
-};
+// GDAL's latest message as the tail of one of ours: ": <message>", or nothing.
+std::string gdal_says() {
+  const std::string m = QuietGdal::last_message();
+  return m.empty() ? "" : ": " + m;
+}
 
 // A grid larger than this is beyond any server's default limit of grid values; refusing it
 // here saves reading gigabytes only to be told so.
@@ -46,8 +34,7 @@ RasterGrid read_raster_grid(const std::string& path, const std::string& flag) {
       GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!data) {
     throw_invalid(flag, "cannot open " + file + " as raster data" +
-                            (QuietGdal::last_message().empty() ? " (no GDAL driver recognises it)"
-                                                               : QuietGdal::last_message()));
+                            (gdal_says().empty() ? " (no GDAL driver recognises it)" : gdal_says()));
   }
   if (data->GetRasterCount() < 1) throw_invalid(flag, file + " has no raster band");
   const int width = data->GetRasterXSize(), height = data->GetRasterYSize();
@@ -87,7 +74,7 @@ RasterGrid read_raster_grid(const std::string& path, const std::string& flag) {
   std::vector<float> file_rows(static_cast<size_t>(width) * height);
   if (band->RasterIO(GF_Read, 0, 0, width, height, file_rows.data(), width, height, GDT_Float32, 0,
                      0) != CE_None) {
-    throw_invalid(flag, "cannot read the pixels of " + file + QuietGdal::last_message());
+    throw_invalid(flag, "cannot read the pixels of " + file + gdal_says());
   }
   int has_no_data = 0;
   const double no_data = band->GetNoDataValue(&has_no_data);

@@ -8,10 +8,14 @@
 #include <variant>
 
 #include "core/common/error.h"
+#include "tests/server/conversion_expectations.h"
 #include "server/request_conversion.h"
 
 namespace meshd {
 namespace {
+
+using testing::expect_error;
+using testing::expect_invalid;
 
 // The unit disk's distance on an n x n grid over [-1.5, 1.5]^2, at h0 0.1.
 v1::MeshRequest disk_grid_request(uint32_t n = 31) {
@@ -33,24 +37,6 @@ v1::MeshRequest disk_grid_request(uint32_t n = 31) {
 
 v1::DistanceGrid& grid_of(v1::MeshRequest& r) {
   return *r.mutable_geometry()->mutable_distance_grid();
-}
-
-void expect_error(const v1::MeshRequest& request, ErrorCode code, const std::string& field,
-                  const std::string& message, const ConversionLimits& limits = {}) {
-  try {
-    to_problem(request, limits);
-    ADD_FAILURE() << "no error; expected " << field << ": " << message;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(e.detail().find(message), std::string::npos)
-        << "message: " << e.detail() << "\nexpected to contain: " << message;
-  }
-}
-
-void expect_invalid(const v1::MeshRequest& request, const std::string& field,
-                    const std::string& message) {
-  expect_error(request, ErrorCode::kInvalidArgument, field, message);
 }
 
 TEST(DistanceGridConversion, AGoodGridArrivesAsSampled) {

@@ -10,10 +10,14 @@
 
 #include "client/request_file.h"
 #include "core/common/error.h"
+#include "tests/server/conversion_expectations.h"
 #include "core/distmesh/node_estimate.h"
 
 namespace meshd {
 namespace {
+
+using testing::expect_error;
+using testing::expect_invalid;
 
 // ---------------------------------------------------------------------------------------------
 // Helpers: requests are written in text format, as users write them.
@@ -26,26 +30,6 @@ v1::MeshRequest disk_with(const std::string& extra) {
   v1::MeshRequest request = parse("geometry { circle { radius: 1 } } h0: 0.1");
   request.MergeFrom(parse(extra));
   return request;
-}
-
-// Converts `request` and checks that it fails with `code` on `field`, with a message containing
-// `message` (which states the allowed range).
-void expect_error(const v1::MeshRequest& request, ErrorCode code, const std::string& field,
-                  const std::string& message, const ConversionLimits& limits = {}) {
-  try {
-    to_problem(request, limits);
-    ADD_FAILURE() << "no error; expected " << field << ": " << message;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(e.detail().find(message), std::string::npos)
-        << "message: " << e.detail() << "\nexpected to contain: " << message;
-  }
-}
-
-void expect_invalid(const v1::MeshRequest& request, const std::string& field,
-                    const std::string& message, const ConversionLimits& limits = {}) {
-  expect_error(request, ErrorCode::kInvalidArgument, field, message, limits);
 }
 
 void expect_invalid(const std::string& text, const std::string& field, const std::string& message,

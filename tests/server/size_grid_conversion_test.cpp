@@ -11,12 +11,16 @@
 
 #include "client/request_file.h"
 #include "core/common/error.h"
+#include "tests/server/conversion_expectations.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/geometry/size_eval.cuh"
 #include "server/request_conversion.h"
 
 namespace meshd {
 namespace {
+
+using testing::expect_error;
+using testing::expect_invalid;
 
 // The unit square with a 3 x 2 grid term over it (small on the left, large on the right).
 v1::MeshRequest square_with_grid() {
@@ -29,19 +33,6 @@ v1::MeshRequest square_with_grid() {
 
 v1::GridSize& grid_of(v1::MeshRequest& r) {
   return *r.mutable_size()->mutable_terms(0)->mutable_grid();
-}
-
-void expect_error(const v1::MeshRequest& request, ErrorCode code, const std::string& field,
-                  const std::string& message, const ConversionLimits& limits = {}) {
-  try {
-    to_problem(request, limits);
-    ADD_FAILURE() << "no error; expected " << field << ": " << message;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(e.detail().find(message), std::string::npos)
-        << "message: " << e.detail() << "\nexpected to contain: " << message;
-  }
 }
 
 TEST(SizeGridConversion, AValidGridBecomesAGridTerm) {
