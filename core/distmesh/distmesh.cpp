@@ -69,9 +69,17 @@ class Loop {
       }
       s.t_initial += seconds_since(t);
       triangulate(true);
-      // 3-8. Relax until the interior has settled (the termination test of params.h).
+      // 3-8. Relax until the interior has settled (the termination test of params.h). A coarser
+      // level only prepares the next one's start: the coarser levels share at most half of
+      // max_iterations, so that one that never settles (features below its resolution) cannot
+      // leave the problem itself unrelaxed.
       const int before = s.iterations;
-      const int budget = std::max(1, current_->params.max_iterations - s.iterations);
+      const int left = current_->params.max_iterations - s.iterations;
+      const int coarser_levels = static_cast<int>(levels.size()) - 1;
+      const int budget =
+          std::max(1, static_cast<int>(level) < coarser_levels
+                          ? std::min(left, current_->params.max_iterations / (2 * coarser_levels))
+                          : left);
       s.converged = relax(budget, true, s.iterations);
       s.equivalent_iterations +=
           (s.iterations - before) * static_cast<double>(engine_.node_count());
