@@ -30,30 +30,12 @@
 
 namespace meshd {
 
-// The grid's frame of world point p; q points at the grid's parameters.
+// The grid's frame of world point p; q points at the grid's parameters. sdf_eval.cuh's sdf_grid
+// evaluates the distance there.
 MESHD_HD inline Vec2 grid_local(const double* q, Vec2 p) {
   const double* t = q + kGridParams;
   const double dx = p.x - t[0], dy = p.y - t[1];
   return {(t[2] * dx + t[3] * dy) / t[4], (-t[3] * dx + t[2] * dy) / t[4]};
-}
-
-// Exact signed distance from p to the axis-aligned box b.
-MESHD_HD inline double aligned_box_sdf(const Box& b, Vec2 p) {
-  const double hx = 0.5 * (b.max.x - b.min.x), hy = 0.5 * (b.max.y - b.min.y);
-  const double lx = fabs(p.x - 0.5 * (b.min.x + b.max.x)) - hx;
-  const double ly = fabs(p.y - 0.5 * (b.min.y + b.max.y)) - hy;
-  const double ox = lx > 0.0 ? lx : 0.0, oy = ly > 0.0 ? ly : 0.0;
-  const double inner = lx > ly ? lx : ly;
-  return sqrt(ox * ox + oy * oy) + (inner < 0.0 ? inner : 0.0);
-}
-
-MESHD_HD inline double sdf_grid(const double* params, const float* samples, uint32_t offset,
-                                Vec2 p) {
-  const double* q = params + offset;
-  const RegularGrid g = grid_at(params, samples, offset);
-  const Vec2 l = grid_local(q, p);
-  const double inside = bilinear(g, l), box = aligned_box_sdf(g.box(), l);
-  return q[kGridParams + 4] * (inside > box ? inside : box);
 }
 
 }  // namespace meshd

@@ -33,6 +33,19 @@ MESHD_HD inline double sdf_box(const double* q, Vec2 p) {
   return length2d(ox, oy) + min2(max2(lx, ly), 0.0);
 }
 
+// A distance grid (grid_sdf.cuh): the samples' interpolant cut by the grid's box, both in the
+// grid's frame, the box's distance as sdf_box's for an unrotated box.
+MESHD_HD inline double sdf_grid(const double* params, const float* samples, uint32_t offset,
+                                Vec2 p) {
+  const double* q = params + offset;
+  const RegularGrid g = grid_at(params, samples, offset);
+  const Vec2 l = grid_local(q, p);
+  const Box b = g.box();
+  const double box[6] = {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y),
+                         0.5 * (b.max.x - b.min.x), 0.5 * (b.max.y - b.min.y), 1.0, 0.0};
+  return q[kGridParams + 4] * max2(bilinear(g, l), sdf_box(box, l));
+}
+
 MESHD_HD inline double sdf_half_plane(const double* q, Vec2 p) {
   return q[0] * p.x + q[1] * p.y - q[2];
 }

@@ -22,12 +22,14 @@
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
+#include "tests/kernels/gpu_agreement.h"
 
 namespace meshd {
 namespace {
 
-#define SKIP_WITHOUT_GPU() \
-  if (gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
+using testing::expect_meshes_agree;
+using testing::load_and_triangulate;
+using testing::random_points;
 
 using Triangles = std::vector<std::array<int32_t, 3>>;
 
@@ -44,28 +46,6 @@ CompiledProblem compiled(const std::string& id, double nodes) {
   Problem p = testing::benchmark_problem(id, 0.1);
   p.h0 = h0_for_node_count(p, nodes);
   return compile_problem(p);
-}
-
-// Random points inside the domain, fixed points first.
-std::vector<Vec2> random_points(const CompiledProblem& c, size_t count, uint32_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x),
-      uy(c.bbox.min.y, c.bbox.max.y);
-  std::vector<Vec2> pts = c.fixed_points;
-  while (pts.size() < count) {
-    const Vec2 q{ux(rng), uy(rng)};
-    if (eval_sdf(c.geometry.view(), q) < 0.0) pts.push_back(q);
-  }
-  return pts;
-}
-
-// Loads `pts` into each engine and triangulates them from scratch.
-void load_and_triangulate(const CompiledProblem& c, const std::vector<Vec2>& pts,
-                          std::initializer_list<Engine*> engines) {
-  for (Engine* e : engines) {
-    e->load_points(c, pts);
-    e->retriangulate(true);
-  }
 }
 
 class GpuAgreement : public ::testing::TestWithParam<std::string> {};
@@ -436,14 +416,7 @@ TEST(GpuIndexedGeometry, ManyHolesAndALongPolygonMatchTheCpuEngine) {
   GpuEngine gpu(0);
   const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
   const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
-  const auto validity = check_validity(rg.mesh);
-  EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
-  EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
-              static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
-  EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
-  EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
-  EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
-  EXPECT_TRUE(rg.stats.converged);
+  expect_meshes_agree(rc, rg);
   EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
 }
 
@@ -514,15 +487,8 @@ TEST(GpuGridSize, GriddedAndGradedSizeFieldsMatchTheCpuEngine) {
     GpuEngine gpu(0);
     const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
     const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
-    const auto validity = check_validity(rg.mesh);
-    EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
-    EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
-                static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
-    EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
-    EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
+    expect_meshes_agree(rc, rg);
     EXPECT_GE(rg.quality.q_min, 0.65);
-    EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
-    EXPECT_TRUE(rg.stats.converged);
   }
 }
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "core/common/thread_pool.h"
@@ -17,12 +16,10 @@
 #include "core/mesh/validity.h"
 #include "kernels/gpu_engine.h"
 #include "tests/core/geometry/shape_builders.h"
+#include "tests/kernels/gpu_agreement.h"
 
 namespace meshd {
 namespace {
-
-#define SKIP_WITHOUT_GPU() \
-  if (gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
 
 // A rotated, scaled grid disk minus an exact disk, the edge graded towards a second grid (a
 // small disk's distance), so that both programs carry samples.
@@ -51,21 +48,11 @@ TEST(GpuDistanceGrid, OneStepOnRandomPointsMatchesTheCpu) {
   const CompiledProblem c = grid_problem(3000);
   ASSERT_FALSE(c.geometry.samples.empty());
   ASSERT_FALSE(c.size.shapes.samples.empty());
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x),
-      uy(c.bbox.min.y, c.bbox.max.y);
-  std::vector<Vec2> pts = c.fixed_points;
-  while (pts.size() < 3000) {
-    const Vec2 q{ux(rng), uy(rng)};
-    if (eval_sdf(c.geometry.view(), q) < 0.0) pts.push_back(q);
-  }
+  const std::vector<Vec2> pts = testing::random_points(c, 3000, 3);
   ThreadPool pool;
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
-  cpu.load_points(c, pts);
-  gpu.load_points(c, pts);
-  cpu.retriangulate(true);
-  gpu.retriangulate(true);
+  testing::load_and_triangulate(c, pts, {&cpu, &gpu});
   const StepResult sc = cpu.move_points(), sg = gpu.move_points();
   EXPECT_NEAR(sc.max_move, sg.max_move, 1e-9);
   EXPECT_NEAR(sc.rms_move, sg.rms_move, 1e-9);
@@ -93,14 +80,7 @@ TEST(GpuDistanceGrid, WholeMeshMatchesTheCpuEngine) {
   GpuEngine gpu(0);
   const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
   const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
-  const auto validity = check_validity(rg.mesh);
-  EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
-  EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
-              static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
-  EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
-  EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
-  EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
-  EXPECT_TRUE(rg.stats.converged);
+  testing::expect_meshes_agree(rc, rg);
   EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
   double worst = 0.0;
   for (const auto& e : rg.mesh.boundary_edges)

@@ -1,0 +1,59 @@
+// What the GPU-vs-CPU agreement tests share: the skip where no GPU is visible, random points to
+// start from, and the whole-mesh comparison of the two engines.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <initializer_list>
+#include <random>
+#include <vector>
+
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/distmesh.h"
+#include "core/distmesh/engine.h"
+#include "core/geometry/sdf_eval.cuh"
+#include "core/mesh/validity.h"
+#include "kernels/gpu_engine.h"
+
+#define SKIP_WITHOUT_GPU() \
+  if (meshd::gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
+
+namespace meshd::testing {
+
+// Random points inside the domain, fixed points first.
+inline std::vector<Vec2> random_points(const CompiledProblem& c, size_t count, uint32_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(c.bbox.min.x, c.bbox.max.x),
+      uy(c.bbox.min.y, c.bbox.max.y);
+  std::vector<Vec2> pts = c.fixed_points;
+  while (pts.size() < count) {
+    const Vec2 q{ux(rng), uy(rng)};
+    if (eval_sdf(c.geometry.view(), q) < 0.0) pts.push_back(q);
+  }
+  return pts;
+}
+
+// Loads `pts` into each engine and triangulates them from scratch.
+inline void load_and_triangulate(const CompiledProblem& c, const std::vector<Vec2>& pts,
+                                 std::initializer_list<Engine*> engines) {
+  for (Engine* e : engines) {
+    e->load_points(c, pts);
+    e->retriangulate(true);
+  }
+}
+
+// The GPU's mesh `rg` against the CPU engine's `rc` of the same problem: valid, as many nodes
+// within 2%, q_mean within 0.01, q_min at most 0.05 lower, the area within 0.5%, converged.
+inline void expect_meshes_agree(const MeshResult& rc, const MeshResult& rg) {
+  const auto validity = check_validity(rg.mesh);
+  EXPECT_TRUE(validity.problems.empty()) << validity.problems.front();
+  EXPECT_NEAR(static_cast<double>(rg.mesh.points.size()),
+              static_cast<double>(rc.mesh.points.size()), 0.02 * rc.mesh.points.size());
+  EXPECT_NEAR(rg.quality.q_mean, rc.quality.q_mean, 0.01);
+  EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
+  EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
+  EXPECT_TRUE(rg.stats.converged);
+}
+
+}  // namespace meshd::testing
