@@ -71,16 +71,12 @@ fi
 
 [[ -x $MESHD && -x $MESHCTL ]] || { log "$MESHD or $MESHCTL not built"; exit 1; }
 tmp=$(mktemp -d)
-"$MESHD" --listen 127.0.0.1:0 --backend "$backend" --max-nodes 20000000 >"$tmp/meshd.log" 2>&1 &
-meshd_pid=$!
+# shellcheck source=bench/coastline/local_meshd.sh
+. "$here/local_meshd.sh"
+meshd_pid=
 trap 'kill $meshd_pid 2>/dev/null; wait $meshd_pid 2>/dev/null; rm -rf "$tmp"' EXIT
-port=
-for _ in $(seq 300); do  # up to a minute on a busy machine
-  port=$(sed -n 's/.*meshd listening on .*(port \([0-9]*\)).*/\1/p' "$tmp/meshd.log")
-  [[ -n $port ]] && "$MESHCTL" --server "127.0.0.1:$port" health >/dev/null 2>&1 && break
-  sleep 0.2
-done
-[[ -n $port ]] || { cat "$tmp/meshd.log" >&2; log "meshd did not start"; exit 1; }
+start_local_meshd "$MESHD" "$MESHCTL" "$tmp/meshd.log" --backend "$backend" --max-nodes 20000000 ||
+  { cat "$tmp/meshd.log" >&2; log "meshd did not start"; exit 1; }
 server=(--server "127.0.0.1:$port" --deadline 7200)
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }

@@ -23,15 +23,11 @@ rm -rf "$work" && mkdir -p "$work"
 . "$work/region.env"
 "$python" "$src/bench/coastline/export_ocean.py" "$work/region.geojson" --to-crs "$TO_CRS" \
   --clip "$CLIP" --h0 250 --simplify 1 --open 1 --grade 1,0.0005,6 "$work/region"
-"$meshd" --listen 127.0.0.1:0 --backend cpu >"$work/meshd.log" 2>&1 &
-pid=$!
-trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null || true' EXIT
-port=
-for _ in $(seq 300); do  # up to a minute on a busy machine
-  port=$(sed -n 's/.*meshd listening on .*(port \([0-9]*\)).*/\1/p' "$work/meshd.log")
-  [[ -n $port ]] && "$meshctl" --server "127.0.0.1:$port" health >/dev/null 2>&1 && break
-  sleep 0.2
-done
+# shellcheck source=bench/coastline/local_meshd.sh
+. "$src/bench/coastline/local_meshd.sh"
+meshd_pid=
+trap 'kill $meshd_pid 2>/dev/null; wait $meshd_pid 2>/dev/null || true' EXIT
+start_local_meshd "$meshd" "$meshctl" "$work/meshd.log" --backend cpu
 "$meshctl" --server "127.0.0.1:$port" --deadline 600 generate "$work/region.textproto" \
   -o "$work/sea.msh22"
 # The islands file lists all 63; check_mesh.py judges those of at least (2 h0)^2.
