@@ -247,6 +247,13 @@ constexpr double kMaxGradation = 10;
 // The most edges a feature-size term may ask for across a narrow part.
 constexpr double kMaxFeatureElements = 1000;
 
+// A term's h_max: finite and at least its h_min.
+double at_least_h_min(double h_max, double h_min, const std::string& field) {
+  if (!(std::isfinite(h_max) && h_max >= h_min))
+    throw_invalid(field, "must be finite and >= h_min = " + num(h_min) + got(h_max));
+  return h_max;
+}
+
 SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
   SizeFieldSpec out;
   if (!request.has_size()) return out;
@@ -280,11 +287,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
         if (!(std::isfinite(term.slope) && term.slope >= 0)) {
           throw_invalid(q + ".slope", "must be finite and >= 0" + got(term.slope));
         }
-        term.h_max = d.h_max();
-        if (!(std::isfinite(term.h_max) && term.h_max >= term.h_min)) {
-          throw_invalid(q + ".h_max",
-                        "must be finite and >= h_min = " + num(term.h_min) + got(term.h_max));
-        }
+        term.h_max = at_least_h_min(d.h_max(), term.h_min, q + ".h_max");
         if (!d.has_shape()) throw_invalid(q + ".shape", "required: the shape to measure from");
         term.shape = ShapeConverter(limits, q + ".shape").convert(d.shape());
         low = term.h_min;
@@ -311,11 +314,7 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
                                              "], edges across a narrow part" + got(term.elements));
         }
         term.h_min = positive(f.h_min(), q + ".h_min");
-        term.h_max = f.h_max();
-        if (!(std::isfinite(term.h_max) && term.h_max >= term.h_min)) {
-          throw_invalid(q + ".h_max",
-                        "must be finite and >= h_min = " + num(term.h_min) + got(term.h_max));
-        }
+        term.h_max = at_least_h_min(f.h_max(), term.h_min, q + ".h_max");
         low = term.h_min;
         high = term.h_max;
         out.terms.emplace_back(term);
