@@ -132,11 +132,17 @@ MESHD_HD inline double sdf_primitive(ProgramView prog, const Instruction& ins, V
 }
 
 // How many kUnionIndexed levels the evaluator follows through its index; deeper ones run their
-// plain fold. A template parameter rather than recursion, which device code would pay for; one
-// level, because every level inlines another evaluator into each kernel (on an H100, a second
-// level took the step kernels from 86 to 110 registers and slowed G5 at 1M by about a quarter;
-// with one level, G1-G5 and the examples ran as fast as with no index at all).
+// plain fold. A template parameter rather than recursion, which device code would pay for. On
+// the device one level, because every level inlines another evaluator into each kernel (on an
+// H100, a second level took the step kernels from 86 to 110 registers and slowed G5 at 1M by
+// about a quarter; with one level, G1-G5 and the examples ran as fast as with no index at all).
+// The host has no such cost, and its second level serves a union of polygons with many holes
+// each (an imported coastline: the holes of each land polygon are a nested indexed union).
+#ifdef __CUDA_ARCH__
 constexpr int kIndexedUnionLevels = 1;
+#else
+constexpr int kIndexedUnionLevels = 2;
+#endif
 
 template <int kLevels, int kStack = kMaxProgramStack>
 MESHD_HD double eval_program(ProgramView prog, uint32_t begin, uint32_t end, Vec2 p, int* owner);
