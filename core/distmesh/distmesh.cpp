@@ -10,6 +10,7 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/distmesh/refine.h"
+#include "core/distmesh/spatial_order.h"
 #include "core/mesh/boundary.h"
 
 namespace meshd {
@@ -63,7 +64,8 @@ class Loop {
       } else {
         engine_.read_points(points_);
         engine_.read_triangles(triangles_);
-        const auto refined = refine_by_midpoints(*current_, points_, triangles_);
+        auto refined = refine_by_midpoints(*current_, points_, triangles_);
+        hilbert_order(points_, static_cast<int32_t>(current_->fixed_points.size()), refined);
         engine_.load_points(*current_, points_);
         engine_.offer_triangulation(refined);
       }
