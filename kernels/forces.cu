@@ -187,8 +187,12 @@ __global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditiona
   Vec2* const moved = b.args.p_next.data;
   b.args.p_next.data = const_cast<Vec2*>(b.args.p.data);
   b.args.p.data = moved;
-  if (in_graph)
-    cudaGraphSetConditional(more, k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k));
+  // The batch's copy of the rule carries the settling record on from step to step.
+  b.rule.settling = b.rule.settle(b.rule.settling, r);
+  if (in_graph) {
+    cudaGraphSetConditional(
+        more, k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling));
+  }
 }
 
 __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,

@@ -816,12 +816,14 @@ void GpuEngine::move_points_until(const StepRule& rule, int first_iteration, int
                                   std::vector<StepResult>& steps) {
   Impl& s = *impl_;
   s.use_device();
+  StepRule batch_rule = rule;  // its settling carried from batch to batch
   for (int done = 0; done < limit;) {
-    const int ran = s.run_steps(rule, first_iteration + done, limit - done);
+    const int ran = s.run_steps(batch_rule, first_iteration + done, limit - done);
     const StepResult* results = s.h_batch.get()->results;
     steps.insert(steps.end(), results, results + ran);
     done += ran;
-    if (rule.stops(steps.back(), first_iteration + done - 1)) return;
+    for (int k = 0; k < ran; ++k) batch_rule.settling = rule.settle(batch_rule.settling, results[k]);
+    if (rule.stops(steps.back(), first_iteration + done - 1, batch_rule.settling)) return;
   }
 }
 

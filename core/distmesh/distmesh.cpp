@@ -141,6 +141,7 @@ class Loop {
   // The termination test's constants (step_rule.cuh).
   static constexpr double kMaxMoveFactor = 10.0;
   static constexpr int kMinIterations = 10;
+  static constexpr int kPatience = 100;
 
   int64_t max_removed() const {
     const auto free_nodes =
@@ -176,6 +177,7 @@ class Loop {
     rule.dptol = prm.dptol;
     rule.max_move_factor = kMaxMoveFactor;
     rule.min_iterations = kMinIterations;
+    rule.patience = kPatience;
     int it = 1;
     while (it <= max_iterations) {
       check_cancel();
@@ -210,9 +212,10 @@ class Loop {
           ++iterations;
         }
         drift_ = steps_[k].max_drift;
+        rule.settling = rule.settle(rule.settling, steps_[k]);
         report(stats_.iterations + stats_.cleanup_iterations, steps_[k].max_move);
         // 8. Termination (step_rule.cuh).
-        if (rule.converged(steps_[k], it)) return true;
+        if (rule.converged(steps_[k], it, rule.settling)) return true;
       }
     }
     return false;

@@ -70,7 +70,8 @@ class Engine {
   // step 3's test for the next iteration (the drift since the last triangulation).
   virtual StepResult move_points() = 0;
   // Runs move_points up to `limit` times and appends each step's result to `steps`; stops after
-  // the first step at which `rule.stops(result, first_iteration + k)` (k from 0). By default one
+  // the first step at which `rule.stops(result, first_iteration + k, settling)` (k from 0),
+  // settling being rule.settling carried on by rule.settle over the steps so far. By default one
   // move_points after the other; the GPU engine runs them on the device with no host round trip
   // in between.
   virtual void move_points_until(const StepRule& rule, int first_iteration, int limit,

@@ -13,8 +13,10 @@ struct Params {
   // Moves are measured in each node's own edge length, h0 * h (step_rule.cuh); for a uniform
   // field that is h0, as in distmesh2d.m.
   // Termination: the root-mean-square move of the interior nodes (d < -geps) in one step is
-  // under dptol and the largest under 10 dptol. distmesh2d.m waits for the largest move alone;
-  // on G2 that takes ~10x the iterations for a q_mean 0.001 higher.
+  // under dptol and the largest under 10 dptol, or the rms alone once the largest has not
+  // fallen for 100 such steps (a node cycling between two triangulations never stops;
+  // step_rule.cuh). distmesh2d.m waits for the largest move alone; on G2 that takes ~10x the
+  // iterations for a q_mean 0.001 higher.
   double dptol = 0.001;
   double ttol = 0.1;               // retriangulate when a node moved more than ttol since the last
   double fscale = kUniformFscale;  // L0 = Fscale * (scaled size): bars push until this much longer

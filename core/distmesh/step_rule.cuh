@@ -3,6 +3,8 @@
 // several steps per host round trip and must stop where the loop would look.
 #pragma once
 
+#include <cmath>
+
 #include "core/common/hd.h"
 
 namespace meshd {
@@ -17,6 +19,13 @@ struct StepResult {
   double rms_move = 0.0;   // root mean square of the interior moves
 };
 
+// How the farthest interior move has fared over the settled steps (rms under dptol) of a
+// relaxation so far (StepRule::patience).
+struct Settling {
+  double lowest_max = INFINITY;  // the smallest max_move of a settled step
+  int stalled = 0;               // settled steps since lowest_max last fell
+};
+
 struct StepRule {
   double ttol = 0.0;             // retriangulate once some node drifted this far (params.h)
   double dptol = 0.0;            // the interior has settled when its rms move is under this
@@ -24,19 +33,37 @@ struct StepRule {
   // A relaxation runs at least this long: right after a triangulation a lattice-like start can
   // be balanced everywhere inside while its boundary layer has not moved yet.
   int min_iterations = 0;
+  // ... and once the interior has settled (rms under dptol), the farthest move must keep
+  // falling: after this many settled steps without a new low it is cycling, not settling, and
+  // the relaxation ends at that step (0: never). A node can cycle for ever: an edge flips at a
+  // retriangulation, the forces turn, the node walks back, the edge flips back (in a
+  // coastline's narrow channels a few nodes repeated the same moves every 200 iterations until
+  // max_iterations). Their neighbourhood is left to the clean-up. A boundary layer that is still
+  // annealing sets new lows all the time and is waited for.
+  int patience = 0;
+  // The record before the first step the engine is asked for: the loop's, which the engine
+  // carries on through a batch (settle).
+  Settling settling;
 
   // Step 3 of the next iteration: the points drifted far enough to retriangulate first.
   MESHD_HD bool needs_triangulation(double max_drift) const { return max_drift > ttol; }
-  // Step 8: the relaxation is over after `iteration` (counted from 1): the interior has settled
-  // as a whole and no node still moves far; waiting for the last annealing node to stop costs
-  // hundreds of iterations and no quality.
-  MESHD_HD bool converged(const StepResult& r, int iteration) const {
+  // The record `s` after a step with result r.
+  MESHD_HD Settling settle(Settling s, const StepResult& r) const {
+    if (!(r.rms_move < dptol)) return s;
+    if (r.max_move < s.lowest_max) return {r.max_move, 0};
+    return {s.lowest_max, s.stalled + 1};
+  }
+  // Step 8: the relaxation is over after `iteration` (counted from 1), `s` being the record
+  // after it: the interior has settled as a whole and no node still moves far (waiting for the
+  // last annealing node to stop costs hundreds of iterations and no quality), or the farthest
+  // move has stopped falling for `patience` settled steps.
+  MESHD_HD bool converged(const StepResult& r, int iteration, const Settling& s) const {
     return iteration >= min_iterations && r.rms_move < dptol &&
-           r.max_move < max_move_factor * dptol;
+           (r.max_move < max_move_factor * dptol || (patience > 0 && s.stalled >= patience));
   }
   // Where a run of several steps must hand back to the loop.
-  MESHD_HD bool stops(const StepResult& r, int iteration) const {
-    return needs_triangulation(r.max_drift) || converged(r, iteration);
+  MESHD_HD bool stops(const StepResult& r, int iteration, const Settling& s) const {
+    return needs_triangulation(r.max_drift) || converged(r, iteration, s);
   }
 };
 

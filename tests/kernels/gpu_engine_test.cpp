@@ -131,7 +131,7 @@ TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
       std::vector<StepResult> expected;
       for (int k = 0; k < 40; ++k) {
         expected.push_back(direct.move_points());
-        if (rule.stops(expected.back(), 1 + k)) break;
+        if (rule.stops(expected.back(), 1 + k, Settling{})) break;
       }
       const std::string where =
           "lagged " + std::to_string(lagged) + " ttol " + std::to_string(ttol);
@@ -152,6 +152,28 @@ TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
       EXPECT_EQ(a, b) << where;
     }
   }
+}
+
+// The settling record (step_rule.cuh) is carried on inside a batch on the device from the loop's
+// record before it: with every step settled, no step's largest move small enough and none a new
+// low, a patience of 5 with 2 stalled steps before the batch ends it at its third step, as the
+// loop would.
+TEST_P(GpuAgreement, StepGraphStopsWhenThePatienceRunsOut) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 3000);
+  const auto pts = random_points(c, 3000, 7);
+  GpuEngine graph(0);
+  graph.set_step_graph(true);
+  load_and_triangulate(c, pts, {&graph});
+  StepRule rule;
+  rule.ttol = 1e9;
+  rule.dptol = 1e9;              // every step settled
+  rule.max_move_factor = 0.0;    // ... but none with its largest move small enough
+  rule.patience = 5;
+  rule.settling = {0.0, 2};      // no move falls under 0
+  std::vector<StepResult> steps;
+  graph.move_points_until(rule, 1, 32, steps);
+  EXPECT_EQ(steps.size(), 3u);
 }
 
 // The loop asks the graph for batches of steps (engine.h): the whole job runs the same

@@ -406,6 +406,47 @@ TEST(GenerateMesh, BatchesOfStepsRunTheSameLoop) {
   }
 }
 
+// A node that never stops moving (here: every step reports an interior move of at least 50
+// dptol, as a node cycling between two triangulations does) must not hold the loop to
+// max_iterations: once the largest move of the settled steps (rms under dptol) stops setting
+// new lows for 100 of them (the patience, step_rule.cuh), the relaxation is over.
+class CyclingNodeEngine final : public testing::ForwardingEngine {
+ public:
+  using ForwardingEngine::ForwardingEngine;
+  StepResult move_points() override {
+    StepResult r = cpu_.move_points();
+    r.max_move = std::max(r.max_move, 0.05);
+    steps.push_back(r);
+    return r;
+  }
+  std::vector<StepResult> steps;
+};
+
+TEST(GenerateMesh, ANodeThatNeverStopsDoesNotHoldTheLoopToMaxIterations) {
+  Problem p = testing::benchmark_problem("G2", 1.0);
+  p.h0 = h0_for_node_count(p, 1500);
+  p.params.multilevel = Params::Multilevel::kOff;
+  p.params.cleanup = false;
+  const CompiledProblem c = compile_problem(p);
+  ThreadPool pool;
+  CyclingNodeEngine engine(pool);
+  const MeshResult r = generate_mesh(c, engine, nullptr, nullptr);
+  EXPECT_TRUE(r.stats.converged);
+  EXPECT_LT(r.stats.iterations, 2000);
+  // It ended at the 100th settled step after the last new low of the largest move.
+  const double dptol = c.params.dptol;
+  double lowest = INFINITY;
+  int stalled = 0;
+  for (const StepResult& s : engine.steps) {
+    if (!(s.rms_move < dptol)) continue;
+    stalled = s.max_move < lowest ? 0 : stalled + 1;
+    lowest = std::min(lowest, s.max_move);
+  }
+  EXPECT_TRUE(engine.steps.back().rms_move < dptol);
+  EXPECT_EQ(stalled, 100);
+  EXPECT_TRUE(check_validity(r.mesh).valid());
+}
+
 TEST(GenerateMesh, CleanupImprovesTheWorstElementOnG3) {
   const MeshRun on = mesh("G3", 2000);
   const MeshRun off = mesh("G3", 2000, [](Problem& p) { p.params.cleanup = false; });
