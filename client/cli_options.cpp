@@ -170,6 +170,8 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.size_grid.spacing = spacing(a, next());
     else if (a == "--gradation")
       o.gradation = number(a, next());
+    else if (a == "--feature")
+      o.feature = numbers<3>(a, next(), "elements,h_min,h_max");
     else if (a == "--grade") {
       o.grade = numbers<3>(a, next(), "h_min,slope,h_max");
       const auto [h_min, slope, h_max] = *o.grade;
@@ -241,6 +243,8 @@ Size field (added to the request file's terms: h is the minimum of them all):
                            or a GeoTIFF / GDAL raster, north-up, pixel centres as samples
   --size-grid-origin X,Y   where sample [0, 0] lies (required for .npy; overrides a raster's)
   --size-grid-spacing D | DX,DY   the samples' spacing (required for .npy; overrides a raster's)
+  --feature K,H_MIN,H_MAX  a feature-size term: about K edges across the domain's narrow
+                           parts (channels), h clamped to [H_MIN, H_MAX]
   --gradation G            the edge length may grow by at most G per length unit, (0, 10]
 Job options (override the file's):
   --backend auto|gpu|cpu  --priority P (-10..10)  --label TEXT

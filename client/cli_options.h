@@ -48,6 +48,9 @@ struct CliOptions {
   // --grade H_MIN,SLOPE,H_MAX: a size term h = min(H_MAX, H_MIN + SLOPE |d|) about the import
   // (relative sizes; SLOPE per unit of the output CRS).
   std::optional<std::array<double, 3>> grade;
+  // --feature ELEMENTS,H_MIN,H_MAX: a feature-size term, about ELEMENTS edges across the
+  // domain's narrow parts, clamped to [H_MIN, H_MAX] (relative sizes; checked by the server).
+  std::optional<std::array<double, 3>> feature;
   // list
   std::string state;
 };

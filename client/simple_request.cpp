@@ -140,7 +140,8 @@ void check_sdf_grid_flags(const CliOptions& o, bool shape, bool importing) {
   if (!o.h0) throw_invalid("--h0", "required with --sdf-grid");
 }
 
-// --size-grid and --gradation add to the request's size field, whatever gave the geometry.
+// --size-grid, --feature and --gradation add to the request's size field, whatever gave the
+// geometry.
 void add_size_flags(const CliOptions& o, v1::MeshRequest& request) {
   const SizeGridOptions& g = o.size_grid;
   if (g.path.empty()) {
@@ -148,6 +149,12 @@ void add_size_flags(const CliOptions& o, v1::MeshRequest& request) {
     if (g.spacing) throw_invalid("--size-grid-spacing", "only with --size-grid FILE");
   } else {
     *request.mutable_size()->add_terms()->mutable_grid() = read_size_grid(g);
+  }
+  if (o.feature) {
+    auto* term = request.mutable_size()->add_terms()->mutable_feature();
+    term->set_elements((*o.feature)[0]);
+    term->set_h_min((*o.feature)[1]);
+    term->set_h_max((*o.feature)[2]);
   }
   if (o.gradation) request.mutable_size()->set_gradation(*o.gradation);
 }

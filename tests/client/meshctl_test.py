@@ -361,6 +361,26 @@ def test_size_grid(c):
     assert "size.gradation" in r.stderr and "(0, 10]" in r.stderr, r.stderr
 
 
+def test_feature(c):
+    """--feature: two unit squares joined by a channel 0.1 wide; at h0 0.1 the channel is one
+    edge across, with --feature 4,0.1,1 about four, so the mesh gains nodes; then a count of
+    elements out of the server's range (the field named)."""
+    with open(c.path("dumbbell.textproto"), "w") as f:
+        f.write("geometry { union { shapes { rectangle { min { x: -1.5 y: -0.5 } max { x: -0.5 y: 0.5 } } }\n"
+                "  shapes { rectangle { min { x: -0.6 y: -0.05 } max { x: 0.6 y: 0.05 } } }\n"
+                "  shapes { rectangle { min { x: 0.5 y: -0.5 } max { x: 1.5 y: 0.5 } } } } }\n"
+                "h0: 0.1\n")
+    plain = summary_nodes(c.expect(OK, "generate", "dumbbell.textproto").stdout)
+    featured = summary_nodes(c.expect(OK, "generate", "dumbbell.textproto",
+                                      "--feature", "4,0.1,1", "--gradation", "0.3").stdout)
+    assert featured > 1.3 * plain, f"{featured} nodes with --feature, {plain} without"
+    print(f"  dumbbell: {plain} nodes, with --feature 4,0.1,1 {featured}")
+    r = c.expect(BAD_REQUEST, "generate", "dumbbell.textproto", "--feature", "0,0.1,1")
+    assert "size.terms[0].feature.elements" in r.stderr and "[1, 1000]" in r.stderr, r.stderr
+    r = c.expect(BAD_REQUEST, "generate", "dumbbell.textproto", "--feature", "4,0.1")
+    assert "--feature:" in r.stderr and "elements,h_min,h_max" in r.stderr, r.stderr
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -389,6 +409,7 @@ TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
          test_output_file_error, test_import, test_request, test_sdf_grid, test_size_grid,
+         test_feature,
          test_help, test_not_serving_while_draining]
 
 
