@@ -10,11 +10,15 @@ clipped, simplified and filtered as client/gis_import.cpp does it. This script t
 steps with the same GDAL/GEOS calls, so that meshbench (engine time alone, and runs on a machine
 with no GDAL) and Gmsh get the same polygons:
   OUT.textproto  the request: difference(clip box, union(land polygons)), the --grade size term
-                 about the land, h0;
+                 about the land, h0; with --feature K,H_MIN,H_MAX a feature-size term too (K
+                 elements across channels) and with --gradation G the field's gradation, as
+                 meshctl's flags of those names add them;
   OUT.geo        the same sea for Gmsh (box minus the union of the land, by GEOS), its size
                  field Threshold(Distance to the shoreline), i.e. hs * h0 * min(H_MAX, H_MIN +
                  SLOPE d), where `gmsh -setnumber hs S` scales it (default 1) and
                  `-setnumber algo A` picks the 2D algorithm (default 6, Frontal-Delaunay).
+                 Gmsh has no feature-size or gradation field of its own: its field stays the
+                 distance term, and run.sh matches the node counts.
 Prints the polygon and vertex counts, which meshctl's own summary line must match.
 
 --open F goes one step beyond meshctl: water narrower than F * h0 is closed before the
@@ -136,7 +140,7 @@ def shape_text(outer, holes):
         "subtract { " + poly(h) + " }" for h in holes) + " } }"
 
 
-def write_request(path, land, clip, h0, grade):
+def write_request(path, land, clip, h0, grade, feature, gradation):
     # As client/imported_shape.cpp builds it: a lone polygon stands alone, more form a union.
     if len(land) == 1:
         shape = shape_text(*land[0])[2:-2]
@@ -150,7 +154,13 @@ def write_request(path, land, clip, h0, grade):
                  f'y: {clip[1]} }} max {{ x: {clip[2]} y: {clip[3]} }} }} }}\n')
         fh.write(f"  subtract {{ {land_shape} }} }} }}\n")
         fh.write(f"size {{ terms {{ distance {{ shape {{ {land_shape} }}\n")
-        fh.write(f"  h_min: {grade[0]} slope: {grade[1]} h_max: {grade[2]} }} }} }}\n")
+        fh.write(f"  h_min: {grade[0]} slope: {grade[1]} h_max: {grade[2]} }} }}\n")
+        if feature:
+            fh.write(f"  terms {{ feature {{ elements: {feature[0]} h_min: {feature[1]} "
+                     f"h_max: {feature[2]} }} }}\n")
+        if gradation:
+            fh.write(f"  gradation: {gradation}\n")
+        fh.write("}\n")
         fh.write(f"h0: {h0}\n")
 
 
@@ -227,6 +237,8 @@ def main():
     ap.add_argument("--h0", type=float, required=True)
     ap.add_argument("--simplify", type=float, default=0, help="tolerance F * h0")
     ap.add_argument("--grade", required=True, help="H_MIN,SLOPE,H_MAX")
+    ap.add_argument("--feature", help="K,H_MIN,H_MAX: a feature-size term in the request")
+    ap.add_argument("--gradation", type=float, default=0, help="the request's size gradation")
     ap.add_argument("--open", type=float, default=0,
                     help="close water narrower than F * h0 first (see opened_land)")
     ap.add_argument("out")
@@ -236,7 +248,8 @@ def main():
     land = import_land(a.region, a.to_crs, clip, a.simplify * a.h0, a.open * a.h0 / 2)
     if not land:
         sys.exit("export_ocean: no land inside the clip box")
-    write_request(a.out + ".textproto", land, clip, a.h0, grade)
+    feature = [float(v) for v in a.feature.split(",")] if a.feature else None
+    write_request(a.out + ".textproto", land, clip, a.h0, grade, feature, a.gradation)
     surfaces, points, shore = write_geo(a.out + ".geo", land, clip, a.h0, grade)
     holes = sum(len(h) for _, h in land)
     vertices = sum(len(o) + sum(len(h) for h in hs) for o, hs in land)

@@ -23,7 +23,8 @@
 #
 # Environment (defaults in brackets): WORK [bench/coastline/data], REGION [19.3/23.2/59.5/60.8:
 # the Archipelago Sea and Åland], H0 [200] metres, SIMPLIFY [1] and OPEN [1] times H0 (see
-# export_ocean.py), GRADE [1,0.00025,8], MIN_ISLAND [(2 H0)^2] m2, MESHD [build/bin/meshd],
+# export_ocean.py), GRADE [1,0.00025,8], FEATURE [3,0.25,8] (K,H_MIN,H_MAX; "" for none),
+# GRADATION [0.2; 0 for none], MIN_ISLAND [(2 H0)^2] m2, MESHD [build/bin/meshd],
 # MESHCTL [build/bin/meshctl], GMSH [gmsh], PYTHON [/usr/bin/python3].
 set -euo pipefail
 shopt -s inherit_errexit
@@ -43,6 +44,7 @@ WORK=${WORK:-$here/data}
 prefix=${1:-$WORK/archipelago}
 REGION=${REGION:-19.3/23.2/59.5/60.8}
 H0=${H0:-200} SIMPLIFY=${SIMPLIFY:-1} OPEN=${OPEN:-1} GRADE=${GRADE:-1,0.00025,8}
+FEATURE=${FEATURE-3,0.25,8} GRADATION=${GRADATION:-0.2}
 MIN_ISLAND=${MIN_ISLAND:-$(awk -v h="$H0" 'BEGIN { print (2 * h) ^ 2 }')}
 MESHD=${MESHD:-build/bin/meshd} MESHCTL=${MESHCTL:-build/bin/meshctl}
 GMSH=${GMSH:-gmsh} PYTHON=${PYTHON:-/usr/bin/python3}
@@ -64,7 +66,8 @@ if [[ ! -f $prefix.textproto || ! -f $prefix.islands ]]; then
   # shellcheck disable=SC1090
   . "$prefix.env"
   "$PYTHON" "$here/export_ocean.py" "$prefix.geojson" --to-crs "$TO_CRS" --clip "$CLIP" \
-    --h0 "$H0" --simplify "$SIMPLIFY" --open "$OPEN" --grade "$GRADE" "$prefix" >&2
+    --h0 "$H0" --simplify "$SIMPLIFY" --open "$OPEN" --grade "$GRADE" \
+    ${FEATURE:+--feature "$FEATURE"} --gradation "$GRADATION" "$prefix" >&2
 fi
 
 # ---- 2. meshd ----------------------------------------------------------------------------------
@@ -149,7 +152,8 @@ fi
 
 # ---- 6. the table ------------------------------------------------------------------------------
 
-echo "Region $prefix: h0 $H0 m, simplify $SIMPLIFY h0, open $OPEN h0, grade $GRADE;" \
+echo "Region $prefix: h0 $H0 m, simplify $SIMPLIFY h0, open $OPEN h0, grade $GRADE," \
+  "feature ${FEATURE:-none}, gradation $GRADATION (Gmsh: the grade alone, at meshd's node count);" \
   "islands counted from $MIN_ISLAND m2; $(nproc) CPUs, load at end $(cut -d' ' -f1-3 /proc/loadavg);" \
   "time: meshd's mesh seconds / Gmsh's process wall time, median of $repeat."
 echo
