@@ -29,6 +29,8 @@ namespace {
 
 using testing::expect_meshes_agree;
 using testing::load_and_triangulate;
+using testing::point_gaps;
+using testing::PointGaps;
 using testing::random_points;
 
 using Triangles = std::vector<std::array<int32_t, 3>>;
@@ -91,17 +93,9 @@ TEST_P(GpuAgreement, OneStepOnRandomPointsMatchesTheCpu) {
     cpu.read_points(a);
     gpu.read_points(b);
     ASSERT_EQ(a.size(), b.size());
-    // Interior nodes agree to rounding. Projected nodes (now on the boundary) agree to what the
-    // finite-difference gradient allows: one-ulp differences in their position (the L0 scale is
-    // a sum in another order) change fd by ~1e-16, which the step deps = 1.5e-8 h0 amplifies.
-    double worst_interior = 0.0, worst_boundary = 0.0;
-    for (size_t i = 0; i < a.size(); ++i) {
-      const bool projected = std::fabs(eval_sdf(c.geometry.view(), a[i])) < 1e-3 * c.h0;
-      double& worst = projected ? worst_boundary : worst_interior;
-      worst = std::max(worst, norm(a[i] - b[i]));
-    }
-    EXPECT_LT(worst_interior, 1e-12 * c.h0) << "seed " << seed;
-    EXPECT_LT(worst_boundary, 1e-6 * c.h0) << "seed " << seed;
+    const PointGaps gaps = point_gaps(c, a, b);
+    EXPECT_LT(gaps.interior, 1e-12 * c.h0) << "seed " << seed;
+    EXPECT_LT(gaps.boundary, 1e-6 * c.h0) << "seed " << seed;
   }
 }
 
@@ -499,11 +493,7 @@ TEST(GpuGridSize, GriddedAndGradedSizeFieldsMatchTheCpuEngine) {
       cpu.read_points(a);
       gpu.read_points(b);
       ASSERT_EQ(a.size(), b.size());
-      double worst_interior = 0.0;
-      for (size_t i = 0; i < a.size(); ++i)
-        if (std::fabs(eval_sdf(c.geometry.view(), a[i])) >= 1e-3 * c.h0)
-          worst_interior = std::max(worst_interior, norm(a[i] - b[i]));
-      EXPECT_LT(worst_interior, 1e-12 * c.h0);
+      EXPECT_LT(point_gaps(c, a, b).interior, 1e-12 * c.h0);
     }
     CpuEngine cpu(pool);
     GpuEngine gpu(0);

@@ -60,16 +60,9 @@ TEST(GpuDistanceGrid, OneStepOnRandomPointsMatchesTheCpu) {
   cpu.read_points(a);
   gpu.read_points(b);
   ASSERT_EQ(a.size(), b.size());
-  // As in gpu_engine_test: interior nodes to rounding, projected ones to what the
-  // finite-difference gradient amplifies.
-  double worst_interior = 0.0, worst_boundary = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const bool projected = std::fabs(eval_sdf(c.geometry.view(), a[i])) < 1e-3 * c.h0;
-    double& worst = projected ? worst_boundary : worst_interior;
-    worst = std::max(worst, norm(a[i] - b[i]));
-  }
-  EXPECT_LT(worst_interior, 1e-12 * c.h0);
-  EXPECT_LT(worst_boundary, 1e-6 * c.h0);
+  const testing::PointGaps gaps = testing::point_gaps(c, a, b);
+  EXPECT_LT(gaps.interior, 1e-12 * c.h0);
+  EXPECT_LT(gaps.boundary, 1e-6 * c.h0);
 }
 
 TEST(GpuDistanceGrid, WholeMeshMatchesTheCpuEngine) {
