@@ -122,18 +122,23 @@ def land_faces(faces, region, resolution):
     return [f for i, f in enumerate(faces) if i in keep]
 
 
+def from_wgs84(crs):
+    """The transformation from WGS 84 degrees (longitude, latitude) to `crs`, x before y."""
+    geo, target = osr.SpatialReference(), osr.SpatialReference()
+    geo.ImportFromEPSG(4326)
+    target.SetFromUserInput(crs)
+    for ref in (geo, target):
+        ref.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    return osr.CoordinateTransformation(geo, target)
+
+
 def utm_box(box, margin_m):
     """The UTM zone of the region's centre and the largest box in it inside the region, less
     margin_m on every side."""
     w, e, s, n = box
     zone = int(math.floor(((w + e) / 2 + 180) / 6)) % 60 + 1
     epsg = (32600 if s + n >= 0 else 32700) + zone
-    geo, utm = osr.SpatialReference(), osr.SpatialReference()
-    geo.ImportFromEPSG(4326)
-    utm.ImportFromEPSG(epsg)
-    for ref in (geo, utm):
-        ref.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-    to_utm = osr.CoordinateTransformation(geo, utm)
+    to_utm = from_wgs84(f"EPSG:{epsg}")
     steps = [i / 100 for i in range(101)]
     side = lambda pts: [to_utm.TransformPoint(lon, lat)[:2] for lon, lat in pts]
     west = side([(w, s + t * (n - s)) for t in steps])
@@ -148,12 +153,7 @@ def utm_box(box, margin_m):
 def write_islands(land, crs, clip, path):
     """The islands (land wholly inside the clip box) in the UTM CRS, one line each: a point
     inside, and the area in square metres; what check_mesh.py looks for in the mesh."""
-    geo, utm = osr.SpatialReference(), osr.SpatialReference()
-    geo.ImportFromEPSG(4326)
-    utm.SetFromUserInput(crs)
-    for ref in (geo, utm):
-        ref.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-    to_utm = osr.CoordinateTransformation(geo, utm)
+    to_utm = from_wgs84(crs)
     box = ogr.CreateGeometryFromWkt("POLYGON(({0} {1},{2} {1},{2} {3},{0} {3},{0} {1}))"
                                     .format(*clip))
     count = 0
