@@ -89,7 +89,11 @@ class Optimizer {
     for (int32_t v = nfix_; v < static_cast<int32_t>(p_.size()); ++v) {
       if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
       const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
-      if (std::fabs(eval_sdf(fd_, x)) > kSnapTolerance * h0_ || star_quality(v, x) <= 0.0) continue;
+      if (std::fabs(eval_sdf(fd_, x)) > kSnapTolerance * h0_) continue;
+      // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
+      // flattens that triangle, to a round-off area of either sign that no later move undoes.
+      const double before = star_quality(v, p_[v]), after = star_quality(v, x);
+      if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
       p_[v] = x;
       ++moves;
     }
@@ -171,6 +175,8 @@ class Optimizer {
 
   // Boundary nodes farther than this (times h0) from the boundary are snapped onto it.
   static constexpr double kSnapTolerance = 1e-4;
+  // A snap may lower the worst quality in the node's star to this, or to what it was, not below.
+  static constexpr double kSnapMinQuality = 0.1;
   ProgramView fd_;
   double h0_;
   double deps_;
