@@ -74,7 +74,7 @@ class Loop {
       // 3-8. Relax until the interior has settled (the termination test of params.h). A coarser
       // level only prepares the next one's start: the coarser levels share at most half of
       // max_iterations, so that one that never settles (features below its resolution) cannot
-      // leave the problem itself unrelaxed.
+      // leave the problem itself unrelaxed, and each ends once its rms move stops falling fast.
       const int before = s.iterations;
       const int left = current_->params.max_iterations - s.iterations;
       const int coarser_levels = static_cast<int>(levels.size()) - 1;
@@ -82,7 +82,7 @@ class Loop {
           std::max(1, static_cast<int>(level) < coarser_levels
                           ? std::min(left, current_->params.max_iterations / (2 * coarser_levels))
                           : left);
-      s.converged = relax(budget, true, s.iterations);
+      s.converged = relax(budget, true, s.iterations, static_cast<int>(level) < coarser_levels);
       s.equivalent_iterations +=
           (s.iterations - before) * static_cast<double>(engine_.node_count());
     }
@@ -142,6 +142,8 @@ class Loop {
   static constexpr double kMaxMoveFactor = 10.0;
   static constexpr int kMinIterations = 10;
   static constexpr int kPatience = 100;
+  static constexpr int kCoarserLevelRmsPatience = 100;
+  static constexpr double kCoarserLevelRmsProgress = 0.75;
 
   int64_t max_removed() const {
     const auto free_nodes =
@@ -168,8 +170,10 @@ class Loop {
   }
 
   // Steps 3-8 for at most `max_iterations`; adds the iterations run to `iterations`. Returns
-  // whether the termination test passed.
-  bool relax(int max_iterations, bool density_control, int& iterations) {
+  // whether the termination test passed. A coarser level (`prepares_next_level`) also ends once
+  // its rms move stops falling fast (StepRule::rms_patience).
+  bool relax(int max_iterations, bool density_control, int& iterations,
+             bool prepares_next_level = false) {
     const Params& prm = current_->params;
     const int interval = density_control ? prm.density_control_interval : 0;
     StepRule rule;
@@ -178,6 +182,10 @@ class Loop {
     rule.max_move_factor = kMaxMoveFactor;
     rule.min_iterations = kMinIterations;
     rule.patience = kPatience;
+    if (prepares_next_level) {
+      rule.rms_patience = kCoarserLevelRmsPatience;
+      rule.rms_progress = kCoarserLevelRmsProgress;
+    }
     int it = 1;
     while (it <= max_iterations) {
       check_cancel();

@@ -20,10 +20,13 @@ struct StepResult {
 };
 
 // How the farthest interior move has fared over the settled steps (rms under dptol) of a
-// relaxation so far (StepRule::patience).
+// relaxation so far (StepRule::patience), and the rms move over all its steps
+// (StepRule::rms_patience).
 struct Settling {
   double lowest_max = INFINITY;  // the smallest max_move of a settled step
   int stalled = 0;               // settled steps since lowest_max last fell
+  double rms_record = INFINITY;  // the rms_move of the last step that made progress
+  int rms_stalled = 0;           // steps since then
 };
 
 struct StepRule {
@@ -41,6 +44,14 @@ struct StepRule {
   // max_iterations). Their neighbourhood is left to the clean-up. A boundary layer that is still
   // annealing sets new lows all the time and is waited for.
   int patience = 0;
+  // A coarser level of a multilevel run only prepares the next level's start, and may end
+  // unsettled: after this many steps in which the rms move never fell under rms_progress times
+  // its last record, it is oscillating more than relaxing, and it ends there (0: never). Where
+  // channels are narrower than such a level's edges, a few hundred nodes moved a tenth of their
+  // edge at every step, the whole level retriangulated at every step, and its rms move fell by a
+  // tenth per hundred steps (a level that settles loses most of it in a hundred).
+  int rms_patience = 0;
+  double rms_progress = 1.0;
   // The record before the first step the engine is asked for: the loop's, which the engine
   // carries on through a batch (settle).
   Settling settling;
@@ -49,16 +60,30 @@ struct StepRule {
   MESHD_HD bool needs_triangulation(double max_drift) const { return max_drift > ttol; }
   // The record `s` after a step with result r.
   MESHD_HD Settling settle(Settling s, const StepResult& r) const {
+    if (r.rms_move < rms_progress * s.rms_record) {
+      s.rms_record = r.rms_move;
+      s.rms_stalled = 0;
+    } else {
+      ++s.rms_stalled;
+    }
     if (!(r.rms_move < dptol)) return s;
-    if (r.max_move < s.lowest_max) return {r.max_move, 0};
-    return {s.lowest_max, s.stalled + 1};
+    if (r.max_move < s.lowest_max) {
+      s.lowest_max = r.max_move;
+      s.stalled = 0;
+    } else {
+      ++s.stalled;
+    }
+    return s;
   }
   // Step 8: the relaxation is over after `iteration` (counted from 1), `s` being the record
   // after it: the interior has settled as a whole and no node still moves far (waiting for the
   // last annealing node to stop costs hundreds of iterations and no quality), or the farthest
-  // move has stopped falling for `patience` settled steps.
+  // move has stopped falling for `patience` settled steps; or, where rms_patience is set, the
+  // rms move has made no progress for that many steps.
   MESHD_HD bool converged(const StepResult& r, int iteration, const Settling& s) const {
-    return iteration >= min_iterations && r.rms_move < dptol &&
+    if (iteration < min_iterations) return false;
+    if (rms_patience > 0 && s.rms_stalled >= rms_patience) return true;
+    return r.rms_move < dptol &&
            (r.max_move < max_move_factor * dptol || (patience > 0 && s.stalled >= patience));
   }
   // Where a run of several steps must hand back to the loop.

@@ -170,6 +170,26 @@ TEST_P(GpuAgreement, StepGraphStopsWhenThePatienceRunsOut) {
   EXPECT_EQ(steps.size(), 3u);
 }
 
+// A coarser level's rms record (StepRule::rms_patience) is carried through the graph the same
+// way: with two steps stalled before the batch and a patience of 5, it ends at its third step.
+TEST_P(GpuAgreement, StepGraphStopsWhenTheRmsPatienceRunsOut) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 3000);
+  const auto pts = random_points(c, 3000, 7);
+  GpuEngine graph(0);
+  graph.set_step_graph(true);
+  load_and_triangulate(c, pts, {&graph});
+  StepRule rule;
+  rule.ttol = 1e9;
+  rule.dptol = 0.0;  // never settled
+  rule.rms_patience = 5;
+  rule.settling.rms_record = 0.0;  // no rms move falls under a record of 0
+  rule.settling.rms_stalled = 2;
+  std::vector<StepResult> steps;
+  graph.move_points_until(rule, 1, 32, steps);
+  EXPECT_EQ(steps.size(), 3u);
+}
+
 // The loop asks the graph for batches of steps (engine.h): the whole job runs the same
 // iterations and gives the same mesh, bit for bit, as with one step per round trip.
 TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {

@@ -2,11 +2,16 @@
 // never spends the iterations that the problem itself needs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/common/thread_pool.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
+#include "core/mesh/validity.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
+#include "tests/core/distmesh/forwarding_engine.h"
 
 namespace meshd {
 namespace {
@@ -27,6 +32,57 @@ TEST(Multilevel, CoarserLevelsLeaveTheProblemItselfHalfTheIterations) {
   // (coarse iterations * coarse nodes + fine iterations * fine nodes) / fine nodes: at least
   // the 20 iterations the problem itself keeps (had the coarse level taken all 40, about 11).
   EXPECT_GE(r.stats.equivalent_iterations, 20.0);
+}
+
+// A coarser level whose rms move stops falling fast (here: never reported under 10 dptol, as
+// where nodes oscillate across channels narrower than its edges) ends 100 steps after its last
+// progress, instead of spending its share of max_iterations; the problem itself then settles as
+// usual.
+class StuckCoarseLevelEngine final : public testing::ForwardingEngine {
+ public:
+  StuckCoarseLevelEngine(ThreadPool& pool, double floor)
+      : ForwardingEngine(pool), floor_(floor) {}
+  int64_t load_points(const CompiledProblem& p, const std::vector<Vec2>& pts) override {
+    coarse_ = false;  // the next level starts
+    return ForwardingEngine::load_points(p, pts);
+  }
+  StepResult move_points() override {
+    StepResult r = cpu_.move_points();
+    if (coarse_) {
+      r.rms_move = std::max(r.rms_move, floor_);
+      coarse_steps.push_back(r);
+    }
+    return r;
+  }
+  std::vector<StepResult> coarse_steps;
+
+ private:
+  double floor_;
+  bool coarse_ = true;
+};
+
+TEST(Multilevel, ACoarserLevelWhoseRmsMoveStopsFallingEndsThere) {
+  Problem p = testing::benchmark_problem("G5", 0.012);
+  p.params.multilevel = Params::Multilevel::kOn;
+  p.params.cleanup = false;
+  const CompiledProblem c = compile_problem(p);
+  ThreadPool pool;
+  StuckCoarseLevelEngine engine(pool, 10.0 * c.params.dptol);
+  const MeshResult r = generate_mesh(c, engine, nullptr, nullptr);
+  ASSERT_EQ(r.stats.levels, 2);
+  EXPECT_TRUE(r.stats.converged);
+  ASSERT_FALSE(engine.coarse_steps.empty());
+  EXPECT_LT(engine.coarse_steps.size(), 2000u);
+  // It ended at the 100th step after the last that took the rms move under 3/4 of its record.
+  double record = INFINITY;
+  int stalled = 0;
+  for (const StepResult& s : engine.coarse_steps) {
+    const bool progress = s.rms_move < 0.75 * record;
+    stalled = progress ? 0 : stalled + 1;
+    if (progress) record = s.rms_move;
+  }
+  EXPECT_EQ(stalled, 100);
+  EXPECT_TRUE(check_validity(r.mesh).valid());
 }
 
 }  // namespace
