@@ -148,46 +148,44 @@ TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
   }
 }
 
+// One batch of up to 32 steps through the step graph, from iteration 1, on 3,000 random points
+// of `geometry`, under `rule` (its ttol made too large to end the batch).
+std::vector<StepResult> graph_batch(const std::string& geometry, StepRule rule) {
+  const CompiledProblem c = compiled(geometry, 3000);
+  const auto pts = random_points(c, 3000, 7);
+  GpuEngine graph(0);
+  graph.set_step_graph(true);
+  load_and_triangulate(c, pts, {&graph});
+  rule.ttol = 1e9;
+  std::vector<StepResult> steps;
+  graph.move_points_until(rule, 1, 32, steps);
+  return steps;
+}
+
 // The settling record (step_rule.cuh) is carried on inside a batch on the device from the loop's
 // record before it: with every step settled, no step's largest move small enough and none a new
 // low, a patience of 5 with 2 stalled steps before the batch ends it at its third step, as the
 // loop would.
 TEST_P(GpuAgreement, StepGraphStopsWhenThePatienceRunsOut) {
   SKIP_WITHOUT_GPU();
-  const CompiledProblem c = compiled(GetParam(), 3000);
-  const auto pts = random_points(c, 3000, 7);
-  GpuEngine graph(0);
-  graph.set_step_graph(true);
-  load_and_triangulate(c, pts, {&graph});
   StepRule rule;
-  rule.ttol = 1e9;
   rule.dptol = 1e9;              // every step settled
   rule.max_move_factor = 0.0;    // ... but none with its largest move small enough
   rule.patience = 5;
   rule.settling = {0.0, 2};      // no move falls under 0
-  std::vector<StepResult> steps;
-  graph.move_points_until(rule, 1, 32, steps);
-  EXPECT_EQ(steps.size(), 3u);
+  EXPECT_EQ(graph_batch(GetParam(), rule).size(), 3u);
 }
 
 // A coarser level's rms record (StepRule::rms_patience) is carried through the graph the same
 // way: with two steps stalled before the batch and a patience of 5, it ends at its third step.
 TEST_P(GpuAgreement, StepGraphStopsWhenTheRmsPatienceRunsOut) {
   SKIP_WITHOUT_GPU();
-  const CompiledProblem c = compiled(GetParam(), 3000);
-  const auto pts = random_points(c, 3000, 7);
-  GpuEngine graph(0);
-  graph.set_step_graph(true);
-  load_and_triangulate(c, pts, {&graph});
   StepRule rule;
-  rule.ttol = 1e9;
   rule.dptol = 0.0;  // never settled
   rule.rms_patience = 5;
   rule.settling.rms_record = 0.0;  // no rms move falls under a record of 0
   rule.settling.rms_stalled = 2;
-  std::vector<StepResult> steps;
-  graph.move_points_until(rule, 1, 32, steps);
-  EXPECT_EQ(steps.size(), 3u);
+  EXPECT_EQ(graph_batch(GetParam(), rule).size(), 3u);
 }
 
 // The loop asks the graph for batches of steps (engine.h): the whole job runs the same
