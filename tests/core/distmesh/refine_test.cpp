@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "core/common/thread_pool.h"
@@ -22,44 +23,90 @@ double area(const std::vector<Vec2>& p, const std::array<int32_t, 3>& t) {
 
 class Refine : public ::testing::TestWithParam<std::string> {};
 
-// A relaxed coarse mesh split in four: one new point per edge, boundary midpoints on the
-// boundary, four counter-clockwise triangles per triangle over (nearly) the same area, and every
-// interior edge of the split shared by exactly two of its triangles.
-TEST_P(Refine, SplitsEveryTriangleInFourOverItsOwnMidpoints) {
-  Problem p = testing::benchmark_problem(GetParam(), 0.1);
-  p.h0 = h0_for_node_count(p, 1000);
+struct Split {
+  std::vector<Vec2> points;                         // the coarse mesh's, then the midpoints
+  std::vector<std::array<int32_t, 3>> triangles;    // the coarse mesh's
+  std::vector<std::array<int32_t, 3>> refined;      // refine_by_midpoints'
+  size_t coarse_points = 0;
+  size_t coarse_edges = 0;
+};
+
+// `p` meshed, then refined for the level of half its h0, as the multilevel loop does.
+Split mesh_and_refine(const Problem& p) {
   const CompiledProblem c = compile_problem(p);
   ThreadPool pool;
   CpuEngine engine(pool);
   generate_mesh(c, engine, nullptr, nullptr);
-  std::vector<Vec2> points;
-  std::vector<std::array<int32_t, 3>> triangles;
-  engine.read_points(points);
-  engine.read_triangles(triangles);
-  const size_t n = points.size();
-  const auto refined = refine_by_midpoints(c, points, triangles);
-
-  ASSERT_EQ(refined.size(), 4 * triangles.size());
-  std::map<std::array<int32_t, 2>, int> edge_uses;
-  for (const auto& t : triangles) {
+  Split s;
+  engine.read_points(s.points);
+  engine.read_triangles(s.triangles);
+  s.coarse_points = s.points.size();
+  std::map<std::array<int32_t, 2>, int> edges;
+  for (const auto& t : s.triangles)
     for (int k = 0; k < 3; ++k)
-      ++edge_uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
-  }
-  EXPECT_EQ(points.size(), n + edge_uses.size());
-  for (size_t i = n; i < points.size(); ++i)
-    EXPECT_LT(eval_sdf(c.geometry.view(), points[i]), 1e-3 * c.h0);
+      ++edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+  s.coarse_edges = edges.size();
+  CompiledProblem finer = c;
+  finer.h0 = 0.5 * c.h0;
+  s.refined = refine_by_midpoints(finer, s.points, s.triangles);
+  return s;
+}
+
+// A relaxed coarse mesh refined for half its h0: its edges, all near h0 h, are split, so nearly
+// every triangle splits in four; boundary midpoints lie on the boundary; the split triangles are
+// counter-clockwise, cover (nearly) the same area, and form a valid triangulation.
+TEST_P(Refine, SplitsARelaxedMeshInFourOverItsOwnMidpoints) {
+  Problem p = testing::benchmark_problem(GetParam(), 0.1);
+  p.h0 = h0_for_node_count(p, 1000);
+  const Split s = mesh_and_refine(p);
+  const size_t midpoints = s.points.size() - s.coarse_points;
+  EXPECT_GE(midpoints, 0.97 * static_cast<double>(s.coarse_edges));
+  EXPECT_GE(s.refined.size(), 3.9 * static_cast<double>(s.triangles.size()));
+  const CompiledProblem c = compile_problem(p);
+  for (size_t i = s.coarse_points; i < s.points.size(); ++i)
+    EXPECT_LT(eval_sdf(c.geometry.view(), s.points[i]), 1e-3 * c.h0);
   double before = 0, after = 0;
-  for (const auto& t : triangles) before += area(points, t);
+  for (const auto& t : s.triangles) before += area(s.points, t);
   std::map<std::array<int32_t, 2>, int> directed;
-  for (const auto& t : refined) {
-    ASSERT_GT(orientation_sign(points[t[0]], points[t[1]], points[t[2]]), 0);
-    after += area(points, t);
+  for (const auto& t : s.refined) {
+    ASSERT_GT(orientation_sign(s.points[t[0]], s.points[t[1]], s.points[t[2]]), 0);
+    after += area(s.points, t);
     for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
   }
   // Projected boundary midpoints bulge the boundary triangles out (or in, along a hole).
   EXPECT_NEAR(after, before, 0.01 * before);
   // A valid triangulation: every directed edge once, and its reverse at most once.
   for (const auto& [e, uses] : directed) EXPECT_EQ(uses, 1) << e[0] << "-" << e[1];
+}
+
+// Fixed nodes closer than the finer level's edge (here 61 along the bottom of a square, a
+// third of the coarse edge apart) keep their short edges whole: splitting them would make the
+// next level denser along that side than its size field, and each further level four times so.
+// The split triangulation stays valid where one or two of a triangle's edges are split.
+TEST(Refine, EdgesAlreadyShortEnoughStayWhole) {
+  Problem p;
+  p.geometry = Shape{Rectangle{{0, 0}, {1, 1}}, "", ""};
+  p.h0 = 0.05;
+  for (int i = 0; i <= 60; ++i) p.fixed_points.push_back({i / 60.0, 0.0});
+  const Split s = mesh_and_refine(p);
+  int on_bottom = 0;
+  for (size_t i = s.coarse_points; i < s.points.size(); ++i) on_bottom += s.points[i].y < 1e-9;
+  EXPECT_EQ(on_bottom, 0);
+  EXPECT_GT(s.points.size() - s.coarse_points, 0u);
+  std::map<std::array<int32_t, 2>, int> directed;
+  double before = 0, after = 0;
+  for (const auto& t : s.triangles) before += area(s.points, t);
+  for (const auto& t : s.refined) {
+    ASSERT_GT(orientation_sign(s.points[t[0]], s.points[t[1]], s.points[t[2]]), 0);
+    after += area(s.points, t);
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  EXPECT_NEAR(after, before, 1e-9);
+  for (const auto& [e, uses] : directed) EXPECT_EQ(uses, 1) << e[0] << "-" << e[1];
+  std::vector<int> used(s.points.size(), 0);
+  for (const auto& t : s.refined)
+    for (int32_t v : t) used[v] = 1;
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Geometries, Refine, ::testing::Values("G1", "G2", "G3", "G4", "G5"));
