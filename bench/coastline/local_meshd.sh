@@ -8,6 +8,9 @@
 start_local_meshd() {
   local meshd=$1 meshctl=$2 log=$3
   shift 3
+  # The log exists before meshd starts: the background job opens it only when it runs, and a
+  # read before that failed the caller's `set -e` on a loaded machine.
+  : >"$log"
   "$meshd" --listen 127.0.0.1:0 "$@" >"$log" 2>&1 &
   meshd_pid=$!
   port=
