@@ -822,7 +822,8 @@ void GpuEngine::move_points_until(const StepRule& rule, int first_iteration, int
     const StepResult* results = s.h_batch.get()->results;
     steps.insert(steps.end(), results, results + ran);
     done += ran;
-    for (int k = 0; k < ran; ++k) batch_rule.settling = rule.settle(batch_rule.settling, results[k]);
+    for (int k = 0; k < ran; ++k)
+      batch_rule.settling = rule.settle(batch_rule.settling, results[k]);
     if (rule.stops(steps.back(), first_iteration + done - 1, batch_rule.settling)) return;
   }
 }

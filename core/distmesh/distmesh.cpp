@@ -38,8 +38,8 @@ std::vector<CompiledProblem> multilevel_problems(const CompiledProblem& problem)
   const bool on = mode == Params::Multilevel::kOn ||
                   (mode == Params::Multilevel::kAuto && !problem.size.uniform());
   const double nodes = on ? estimate_node_count(problem) : 0.0;
-  const double fewest = std::max(kCoarsestNodes,
-                                 kNodesPerFixedNode * static_cast<double>(problem.fixed_points.size()));
+  const auto fixed = static_cast<double>(problem.fixed_points.size());
+  const double fewest = std::max(kCoarsestNodes, kNodesPerFixedNode * fixed);
   for (double n = nodes; n >= 4.0 * fewest; n /= 4.0) ++coarsenings;
   std::vector<CompiledProblem> levels;
   for (int k = coarsenings; k >= 0; --k) {
@@ -86,11 +86,11 @@ class Loop {
       const int before = s.iterations;
       const int left = current_->params.max_iterations - s.iterations;
       const int coarser_levels = static_cast<int>(levels.size()) - 1;
-      const int budget =
-          std::max(1, static_cast<int>(level) < coarser_levels
-                          ? std::min(left, current_->params.max_iterations / (2 * coarser_levels))
-                          : left);
-      s.converged = relax(budget, true, s.iterations, static_cast<int>(level) < coarser_levels);
+      const bool coarser = static_cast<int>(level) < coarser_levels;
+      const int budget = std::max(
+          1, coarser ? std::min(left, current_->params.max_iterations / (2 * coarser_levels))
+                     : left);
+      s.converged = relax(budget, true, s.iterations, coarser);
       s.equivalent_iterations +=
           (s.iterations - before) * static_cast<double>(engine_.node_count());
     }

@@ -11,7 +11,7 @@ namespace {
 
 // An edge is split when it is longer than this many times the finer level's edge at its midpoint
 // (h0 h): halving it then brings it nearer that length, in ratio, than keeping it.
-constexpr double kSplitAbove = 1.4142135623730951;
+constexpr double kSplitAbove = M_SQRT2;
 
 // The triangles that cover triangle (a, b, c) once the edges with a midpoint (m[k] >= 0 for edge
 // k, from corner k to corner k + 1) are split, in the parent's orientation.

@@ -60,20 +60,18 @@ struct StepRule {
   MESHD_HD bool needs_triangulation(double max_drift) const { return max_drift > ttol; }
   // The record `s` after a step with result r.
   MESHD_HD Settling settle(Settling s, const StepResult& r) const {
-    if (r.rms_move < rms_progress * s.rms_record) {
-      s.rms_record = r.rms_move;
-      s.rms_stalled = 0;
-    } else {
-      ++s.rms_stalled;
-    }
-    if (!(r.rms_move < dptol)) return s;
-    if (r.max_move < s.lowest_max) {
-      s.lowest_max = r.max_move;
-      s.stalled = 0;
-    } else {
-      ++s.stalled;
-    }
+    track(r.rms_move, rms_progress, s.rms_record, s.rms_stalled);
+    if (r.rms_move < dptol) track(r.max_move, 1.0, s.lowest_max, s.stalled);
     return s;
+  }
+  // A value under `progress` times its record is the new record; any other adds a stalled step.
+  MESHD_HD static void track(double value, double progress, double& record, int& stalled) {
+    if (value < progress * record) {
+      record = value;
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
   }
   // Step 8: the relaxation is over after `iteration` (counted from 1), `s` being the record
   // after it: the interior has settled as a whole and no node still moves far (waiting for the

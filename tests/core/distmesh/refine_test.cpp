@@ -52,6 +52,21 @@ Split mesh_and_refine(const Problem& p) {
   return s;
 }
 
+// The split triangles are counter-clockwise, cover the coarse mesh's area within `area_share`
+// of it, and form a valid triangulation: every directed edge once, its reverse at most once.
+void expect_valid_split(const Split& s, double area_share) {
+  double before = 0, after = 0;
+  for (const auto& t : s.triangles) before += area(s.points, t);
+  std::map<std::array<int32_t, 2>, int> directed;
+  for (const auto& t : s.refined) {
+    ASSERT_GT(orientation_sign(s.points[t[0]], s.points[t[1]], s.points[t[2]]), 0);
+    after += area(s.points, t);
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  EXPECT_NEAR(after, before, area_share * before);
+  for (const auto& [e, uses] : directed) EXPECT_EQ(uses, 1) << e[0] << "-" << e[1];
+}
+
 // A relaxed coarse mesh refined for half its h0: its edges, all near h0 h, are split, so nearly
 // every triangle splits in four; boundary midpoints lie on the boundary; the split triangles are
 // counter-clockwise, cover (nearly) the same area, and form a valid triangulation.
@@ -65,18 +80,8 @@ TEST_P(Refine, SplitsARelaxedMeshInFourOverItsOwnMidpoints) {
   const CompiledProblem c = compile_problem(p);
   for (size_t i = s.coarse_points; i < s.points.size(); ++i)
     EXPECT_LT(eval_sdf(c.geometry.view(), s.points[i]), 1e-3 * c.h0);
-  double before = 0, after = 0;
-  for (const auto& t : s.triangles) before += area(s.points, t);
-  std::map<std::array<int32_t, 2>, int> directed;
-  for (const auto& t : s.refined) {
-    ASSERT_GT(orientation_sign(s.points[t[0]], s.points[t[1]], s.points[t[2]]), 0);
-    after += area(s.points, t);
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  }
   // Projected boundary midpoints bulge the boundary triangles out (or in, along a hole).
-  EXPECT_NEAR(after, before, 0.01 * before);
-  // A valid triangulation: every directed edge once, and its reverse at most once.
-  for (const auto& [e, uses] : directed) EXPECT_EQ(uses, 1) << e[0] << "-" << e[1];
+  expect_valid_split(s, 0.01);
 }
 
 // Fixed nodes closer than the finer level's edge (here 61 along the bottom of a square, a
@@ -93,16 +98,7 @@ TEST(Refine, EdgesAlreadyShortEnoughStayWhole) {
   for (size_t i = s.coarse_points; i < s.points.size(); ++i) on_bottom += s.points[i].y < 1e-9;
   EXPECT_EQ(on_bottom, 0);
   EXPECT_GT(s.points.size() - s.coarse_points, 0u);
-  std::map<std::array<int32_t, 2>, int> directed;
-  double before = 0, after = 0;
-  for (const auto& t : s.triangles) before += area(s.points, t);
-  for (const auto& t : s.refined) {
-    ASSERT_GT(orientation_sign(s.points[t[0]], s.points[t[1]], s.points[t[2]]), 0);
-    after += area(s.points, t);
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  }
-  EXPECT_NEAR(after, before, 1e-9);
-  for (const auto& [e, uses] : directed) EXPECT_EQ(uses, 1) << e[0] << "-" << e[1];
+  expect_valid_split(s, 1e-9);
   std::vector<int> used(s.points.size(), 0);
   for (const auto& t : s.refined)
     for (int32_t v : t) used[v] = 1;
