@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
 #endif
   std::printf(
       "| request | backend | nodes | triangles | levels | iterations | equiv. iter "
-      "| retri (repair/full) | fallbacks | flips | t_tri s | t_forces s | us/iter | GB/s (model) "
+      "| retri (repair/full) | fallbacks / refills | flips | t_tri s | t_forces s | us/iter | GB/s (model) "
       "| t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
@@ -176,11 +176,12 @@ int main(int argc, char** argv) {
                                   (us_per_step * 1e3)
                             : 0.0;
       std::printf(
-          "| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d | %lld | %.3f | %.3f "
+          "| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d / %d | %lld | %.3f | %.3f "
           "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
           name.c_str(), engine->name(), best.mesh.points.size(), best.mesh.triangles.size(),
           s.levels, steps, s.equivalent_iterations, s.retriangulations,
           s.retriangulations - s.full_triangulations, s.full_triangulations, s.repair_fallbacks,
+          s.fold_refills,
           static_cast<long long>(s.flips), s.t_triangulation, s.t_forces, us_per_step, gbps,
           s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
           best.quality.min_angle_deg,

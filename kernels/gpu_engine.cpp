@@ -11,6 +11,7 @@
 #include "core/delaunay/complete_triangulation.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
+#include "core/delaunay/refill_folds.h"
 #include "core/distmesh/initial_triangulation.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/device_buffer.h"
@@ -462,6 +463,20 @@ struct GpuEngine::Impl {
     return *h_counters.get();
   }
 
+  // repair, and where a node crossed an edge (a triangle turned over, which flips cannot undo)
+  // the fold cut out and filled on the host (refill_folds.h), then flipped. Returns the flips,
+  // or -1 when a rebuild is needed; `refilled` tells whether a fold was mended.
+  int64_t repair_folds_too(int64_t& dropped, bool& refilled) {
+    const int64_t flips = repair(dropped);
+    if (flips >= 0) return flips;
+    Triangulation mended = refill_folds(download_points(), download_triangulation(tris, nbrs),
+                                        static_cast<int32_t>(nfix));
+    if (mended.triangles.empty()) return -1;
+    use_completion(mended);
+    refilled = true;
+    return flip_prepared();
+  }
+
   // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
   // dropped slivers in `dropped`.
   int64_t repair(int64_t& dropped) {
@@ -725,6 +740,11 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   stats.full = full || !s.have_triangulation;
   if (stats.full && s.prepared) {
     stats.flips = s.flip_prepared();
+    if (stats.flips < 0) {
+      // The survivors of a node removal come from an older triangulation: one may have turned.
+      int64_t dropped = 0;
+      stats.flips = s.repair_folds_too(dropped, stats.folds_refilled);
+    }
     if (stats.flips >= 0) {
       s.have_triangulation = true;
       const TopologyStats sizes = s.filter_and_bars();
@@ -738,7 +758,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     // The node set is the same as at the last triangulation: the loop asks for a full one to
     // close the gaps of dropped slivers. Repair, and rebuild only if a gap is really there.
     int64_t dropped = 0;
-    int64_t flips = s.repair(dropped);
+    int64_t flips = s.repair_folds_too(dropped, stats.folds_refilled);
     if (flips >= 0 && !s.covers_hull()) {
       // Close the gaps with CGAL on their boundary points alone, then flip again.
       s.prepare_completion(s.download_triangulation(s.tris, s.nbrs));
@@ -753,7 +773,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     }
     stats.repair_failed = true;
   } else if (!stats.full) {
-    const int64_t flips = s.repair(stats.dropped);
+    const int64_t flips = s.repair_folds_too(stats.dropped, stats.folds_refilled);
     if (flips < 0) {
       stats.full = true;
       stats.repair_failed = true;

@@ -37,6 +37,7 @@ v1::RunStats to_proto(const RunStats& s) {
   out.set_full_triangulations(s.full_triangulations);
   out.set_flips(s.flips);
   out.set_repair_fallbacks(s.repair_fallbacks);
+  out.set_fold_refills(s.fold_refills);
   out.set_density_removed(s.density_removed);
   out.set_cleanup_removed(s.cleanup_removed);
   out.set_t_triangulation(s.t_triangulation);

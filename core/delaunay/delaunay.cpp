@@ -86,6 +86,23 @@ Triangulation constrained_delaunay_triangulate(
 
 namespace meshd {
 
+void drop_triangles(Triangulation& tri, const std::vector<char>& drop) {
+  std::vector<int32_t> new_index(tri.triangles.size(), -1);
+  int32_t next = 0;
+  for (size_t t = 0; t < tri.triangles.size(); ++t)
+    if (!drop[t]) new_index[t] = next++;
+  for (size_t t = 0; t < tri.triangles.size(); ++t) {
+    if (drop[t]) continue;
+    tri.triangles[new_index[t]] = tri.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u = tri.neighbors[t][k];
+      tri.neighbors[new_index[t]][k] = u < 0 ? -1 : new_index[u];
+    }
+  }
+  tri.triangles.resize(next);
+  tri.neighbors.resize(next);
+}
+
 std::vector<std::array<int32_t, 2>> edges_of_kept(const Triangulation& tri,
                                                   const std::vector<char>& keep) {
   std::vector<std::array<int32_t, 2>> edges;

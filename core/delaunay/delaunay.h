@@ -29,6 +29,10 @@ Triangulation delaunay_triangulate(const std::vector<Vec2>& points);
 Triangulation constrained_delaunay_triangulate(
     const std::vector<Vec2>& points, const std::vector<std::array<int32_t, 2>>& constraints);
 
+// Removes the triangles t with drop[t] (#M), renumbering the rest in order; their neighbours
+// see -1 across the edges they shared with a removed one.
+void drop_triangles(Triangulation& tri, const std::vector<char>& drop);
+
 // The edges that bound at least one triangle t with keep[t], each once. keep: #M.
 std::vector<std::array<int32_t, 2>> edges_of_kept(const Triangulation& tri,
                                                   const std::vector<char>& keep);

@@ -5,6 +5,7 @@
 
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/lawson_repair.h"
+#include "core/delaunay/refill_folds.h"
 #include "core/distmesh/initial_points.cuh"
 #include "core/geometry/projection.cuh"
 #include "core/geometry/size_eval.cuh"
@@ -73,9 +74,19 @@ TopologyStats CpuEngine::retriangulate(bool full) {
     stats.flips = repair.flips;
     stats.dropped = repair.dropped;
     if (!repair.ok) {
-      // A triangle turned over since the last triangulation: flips cannot repair that.
-      stats.full = true;
-      stats.repair_failed = true;
+      // A triangle turned over since the last triangulation: flips cannot repair that, but
+      // the fold is local (refill_folds.h).
+      Triangulation refilled = refill_folds(p_, dt_, static_cast<int32_t>(nfix_));
+      const std::vector<char> every(refilled.triangles.size(), 1);
+      const RepairResult again = lawson_repair(p_, every, on_boundary_, refilled);
+      if (!refilled.triangles.empty() && again.ok) {
+        dt_ = std::move(refilled);
+        stats.flips = again.flips;
+        stats.folds_refilled = true;
+      } else {
+        stats.full = true;
+        stats.repair_failed = true;
+      }
     }
   }
   if (stats.full) dt_ = delaunay_triangulate(p_);

@@ -172,6 +172,7 @@ class Loop {
     }
     dropped_since_full_ += topo.dropped;
     if (topo.repair_failed) ++stats_.repair_fallbacks;
+    if (topo.folds_refilled) ++stats_.fold_refills;
     stats_.flips += topo.flips;
     drift_ = 0.0;
     ++topology_version_;

@@ -19,7 +19,8 @@ struct RunStats {
   int retriangulations = 0;          // all triangulations, the first included
   int full_triangulations = 0;
   int64_t flips = 0;
-  int repair_fallbacks = 0;     // repairs that found an inverted triangle and rebuilt instead
+  int repair_fallbacks = 0;     // repairs that rebuilt from scratch instead
+  int fold_refills = 0;         // repairs that met turned-over triangles and mended them locally
   int64_t density_removed = 0;  // points removed by density control
   int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
   int cleanup_iterations = 0;

@@ -33,8 +33,9 @@ struct TopologyStats {
   int64_t bars = 0;
   int64_t flips = 0;           // edge flips of a repair
   bool full = true;            // a full triangulation rather than a repair
-  bool repair_failed = false;  // a repair was asked for but found an inverted triangle
+  bool repair_failed = false;  // a repair was asked for, but the engine rebuilt from scratch
   int64_t dropped = 0;         // turned-over boundary slivers a repair removed
+  bool folds_refilled = false;  // a repair cut out turned-over triangles and filled the hole
 };
 
 // max_removed for a removal that may take any number of nodes.

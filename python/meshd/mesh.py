@@ -56,6 +56,7 @@ class RunStats:
     t_cleanup: float
     t_mesh: float
     queue_wait_s: float
+    fold_refills: int
 
     @classmethod
     def from_proto(cls, stats):

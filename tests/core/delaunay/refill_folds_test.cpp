@@ -1,0 +1,100 @@
+// Folds (a node moved across an edge since the triangulation was made) cut out and filled again:
+// the result is a triangulation of the hull, and Lawson's flips take it to the one CGAL builds.
+#include "core/delaunay/refill_folds.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "core/delaunay/exact_predicates.h"
+#include "core/delaunay/lawson_repair.h"
+#include "core/delaunay/triangle_neighbors.h"
+
+namespace meshd {
+namespace {
+
+// A jittered triangular lattice: points in general position, so the Delaunay triangulation is
+// unique.
+std::vector<Vec2> jittered_lattice(int side, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  std::vector<Vec2> points;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      points.push_back({x + 0.5 * (y & 1) + jitter(rng), 0.866 * y + jitter(rng)});
+  return points;
+}
+
+// Triangles as sets: each rotated to start at its smallest index, then sorted.
+std::vector<std::array<int32_t, 3>> canonical(std::vector<std::array<int32_t, 3>> triangles) {
+  for (auto& t : triangles)
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+// Moves node v across the edge opposite it in one of its triangles, to the middle of the
+// triangle beyond: the triangulation now has a fold there. Returns false when v has no such
+// neighbour (it lies on the hull).
+bool push_across(const Triangulation& tri, int32_t v, std::vector<Vec2>& points) {
+  for (size_t t = 0; t < tri.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (tri.triangles[t][k] != v || tri.neighbors[t][k] < 0) continue;
+      const auto& u = tri.triangles[tri.neighbors[t][k]];
+      points[v] = (1.0 / 3.0) * (points[u[0]] + points[u[1]] + points[u[2]]);
+      return true;
+    }
+  }
+  return false;
+}
+
+// Checks `done` against the triangulation CGAL builds, after flipping it to Delaunay.
+void expect_refilled_to_delaunay(const std::vector<Vec2>& points, Triangulation done) {
+  ASSERT_FALSE(done.triangles.empty()) << "the fill failed";
+  for (const auto& v : done.triangles)
+    ASSERT_GT(orientation_sign(points[v[0]], points[v[1]], points[v[2]]), 0);
+  std::vector<std::array<int32_t, 3>> links;
+  ASSERT_TRUE(triangle_neighbors(done.triangles, points.size(), links));
+  EXPECT_EQ(links, done.neighbors);
+  const std::vector<char> keep(done.triangles.size(), 1), none(points.size(), 0);
+  ASSERT_TRUE(lawson_repair(points, keep, none, done).ok);
+  EXPECT_EQ(canonical(done.triangles), canonical(delaunay_triangulate(points).triangles));
+}
+
+TEST(RefillFolds, ANodePushedAcrossAnEdgeIsMendedWithoutARebuild) {
+  std::vector<Vec2> points = jittered_lattice(30, 3);
+  const Triangulation before = delaunay_triangulate(points);
+  ASSERT_TRUE(push_across(before, 15 * 30 + 14, points));
+  Triangulation flipped = before;
+  const std::vector<char> keep(before.triangles.size(), 1), none(points.size(), 0);
+  ASSERT_FALSE(lawson_repair(points, keep, none, flipped).ok) << "the move made no fold";
+  expect_refilled_to_delaunay(points, refill_folds(points, before, 0));
+}
+
+TEST(RefillFolds, ManyFoldsAtOnceNextToEachOtherAndToTheHull) {
+  for (uint32_t seed = 0; seed < 10; ++seed) {
+    std::vector<Vec2> points = jittered_lattice(40, seed);
+    const Triangulation before = delaunay_triangulate(points);
+    std::mt19937 rng(seed);
+    // Some next to each other (merged holes), some one row in from the hull.
+    for (int i = 0; i < 8; ++i) push_across(before, static_cast<int32_t>(rng() % points.size()), points);
+    push_across(before, 1 * 40 + 20, points);
+    push_across(before, 1 * 40 + 21, points);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Triangulation flipped = before;
+    const std::vector<char> keep(before.triangles.size(), 1), none(points.size(), 0);
+    ASSERT_FALSE(lawson_repair(points, keep, none, flipped).ok) << "the moves made no fold";
+    expect_refilled_to_delaunay(points, refill_folds(points, before, 0));
+  }
+}
+
+TEST(RefillFolds, NothingToRefillWithoutAFold) {
+  std::vector<Vec2> points = jittered_lattice(10, 1);
+  const Triangulation tri = delaunay_triangulate(points);
+  points[55].x += 0.01;  // moved, but no triangle turned over
+  EXPECT_TRUE(refill_folds(points, tri, 0).triangles.empty());
+}
+
+}  // namespace
+}  // namespace meshd
