@@ -108,7 +108,10 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   const Vec2 step = a.deltat * total + a.momentum * a.velocity[i];
   a.velocity[i] = step;
   Vec2 q = here + step;
-  const double d = eval_sdf(a.fd, q);
+  // Far enough inside, d's value decides nothing (clearance.cuh): its bound stands in.
+  const double inside = a.clear.carried(a.clearance[i], norm(step));
+  const double d = a.clear.decides(inside) ? -inside : eval_sdf(a.fd, q);
+  a.clearance[i] = round_down_to_float(-d);
   if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
   a.on_boundary[i] = d >= -a.near_boundary;
   a.p_next[i] = q;

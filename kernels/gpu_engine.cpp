@@ -129,6 +129,8 @@ struct GpuEngine::Impl {
   int64_t n = 0, nfix = 0;
   DeviceBuffer<Vec2> p, p_next, p_old, velocity, fixed;
   DeviceBuffer<uint8_t> on_boundary;
+  DeviceBuffer<float> clearance;  // clearance.cuh
+  ClearanceRule clear{};
 
   // Triangulation: all Delaunay triangles, their neighbours, the kept flags, the bars and CSR.
   bool have_triangulation = false;
@@ -191,11 +193,16 @@ struct GpuEngine::Impl {
     p_old.resize(n);
     velocity.resize(n);
     on_boundary.resize(n);
+    clearance.resize(n);
     if (n > 0) {
       MESHD_CUDA_CHECK(cudaMemsetAsync(p_old.data(), 0x7f, n * sizeof(Vec2), stream));  // ~1e306
       MESHD_CUDA_CHECK(cudaMemsetAsync(velocity.data(), 0, n * sizeof(Vec2), stream));
       MESHD_CUDA_CHECK(cudaMemsetAsync(on_boundary.data(), 0, n, stream));
+      // Zero: unknown, evaluated at the next step.
+      MESHD_CUDA_CHECK(cudaMemsetAsync(clearance.data(), 0, n * sizeof(float), stream));
     }
+    clear = ClearanceRule::make(problem->lipschitz, problem->params.geps * problem->h0,
+                                kNearBoundaryRelative * problem->h0, problem->h0);
     // Fixed nodes never move: classify them once, on the host.
     std::vector<uint8_t> fixed_boundary(nfix);
     const double near = kNearBoundaryRelative * problem->h0;
@@ -342,6 +349,8 @@ struct GpuEngine::Impl {
     a.p_old = p_old.span();
     a.velocity = velocity.span();
     a.on_boundary = on_boundary.span();
+    a.clearance = clearance.span();
+    a.clear = clear;
     a.csr_offset = csr_offset.span();
     a.csr_entry = csr_entry.span();
     a.csr_other = csr_other.span();
@@ -600,7 +609,8 @@ struct GpuEngine::Impl {
     const int64_t m = static_cast<int64_t>(tris.size());
     const double geps = problem->params.geps * problem->h0;
     keep.resize(m);
-    gpu::launch_centroid_filter(p.span(), tris.span(), fd, geps, keep.span(), stream);
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, geps,
+                                keep.span(), stream);
     count.resize(m);
     position.resize(m);
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/common/vec2.h"
+#include "core/distmesh/clearance.cuh"
 #include "core/distmesh/initial_points.cuh"
 #include "core/distmesh/step_rule.cuh"
 #include "core/geometry/program.h"
@@ -89,11 +90,13 @@ void launch_scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> b
                                DeviceSpan<double> force, cudaStream_t stream);
 
 struct MoveArgs {
-  DeviceSpan<const Vec2> p;              // #N, positions now
-  DeviceSpan<Vec2> p_next;               // #N, positions after the step
-  DeviceSpan<const Vec2> p_old;          // #N, positions at the last triangulation
-  DeviceSpan<Vec2> velocity;             // #N, last step (momentum), updated
-  DeviceSpan<uint8_t> on_boundary;       // #N, written: near the boundary after the step
+  DeviceSpan<const Vec2> p;         // #N, positions now
+  DeviceSpan<Vec2> p_next;          // #N, positions after the step
+  DeviceSpan<const Vec2> p_old;     // #N, positions at the last triangulation
+  DeviceSpan<Vec2> velocity;        // #N, last step (momentum), updated
+  DeviceSpan<uint8_t> on_boundary;  // #N, written: near the boundary after the step
+  DeviceSpan<float> clearance;      // #N, updated: how far inside (clearance.cuh)
+  ClearanceRule clear;
   DeviceSpan<const int32_t> csr_offset;  // #N + 1
   DeviceSpan<const int32_t> csr_entry;   // bar * 2 + end; read only for a graded size field
   DeviceSpan<const int32_t> csr_other;   // the entry's far end
@@ -211,8 +214,9 @@ void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
 void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                   DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
                                   int64_t nfix, DeviceSpan<uint8_t> node_keep, cudaStream_t stream);
-// keep[t] = fd(centroid) < -geps.
-void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris, ProgramView fd,
+// keep[t] = fd(centroid) < -geps, decided by the nodes' clearances where they can.
+void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
+                            const ClearanceRule& clear, DeviceSpan<const Tri> tris, ProgramView fd,
                             double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream);
 // count[t] = number of bars triangle t contributes (edges to a higher or no neighbour with
 // either side kept); then, with position = exclusive scan of count, writes them.

@@ -13,6 +13,7 @@
 #include "core/geometry/compile.h"
 #include "core/geometry/feature_size.h"
 #include "core/geometry/gradation.h"
+#include "core/geometry/lipschitz.h"
 #include "core/geometry/sdf_eval.cuh"
 
 namespace meshd {
@@ -173,6 +174,7 @@ SizeFieldSpec sampled_size_field(const Problem& problem) {
 CompiledProblem compile_problem(const Problem& problem) {
   CompiledProblem out;
   out.geometry = compile_geometry(problem.geometry);
+  out.lipschitz = distance_lipschitz(out.geometry);
   out.bbox = domain_box(out.geometry, problem.bbox);
   out.size = compile_size_field(needs_sampling(problem.size)
                                     ? sample_field(problem.size, out.geometry, out.bbox, problem.h0)

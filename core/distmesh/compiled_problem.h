@@ -13,6 +13,7 @@ namespace meshd {
 
 struct CompiledProblem {
   Program geometry;
+  double lipschitz = 1.0;  // of the geometry's distance (lipschitz.h)
   SizeProgram size;
   Box bbox;
   double h0 = 0.0;

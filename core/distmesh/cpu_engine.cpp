@@ -98,8 +98,10 @@ TopologyStats CpuEngine::retriangulate(bool full) {
   pool_.for_chunks(dt_.triangles.size(), kChunk, [&](size_t, size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
       const auto& tri = dt_.triangles[t];
-      const Vec2 centroid = (1.0 / 3.0) * (p_[tri[0]] + p_[tri[1]] + p_[tri[2]]);
-      keep[t] = eval_sdf(fd, centroid) < -geps;
+      const Vec2 v[3] = {p_[tri[0]], p_[tri[1]], p_[tri[2]]};
+      const float c[3] = {clearance_[tri[0]], clearance_[tri[1]], clearance_[tri[2]]};
+      const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
+      keep[t] = clearance_rule_.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid) < -geps;
     }
   });
   triangles_.clear();
@@ -205,6 +207,9 @@ void CpuEngine::reset_node_state() {
   pold_.assign(p_.size(), Vec2{INFINITY, INFINITY});
   velocity_.assign(p_.size(), Vec2{});
   on_boundary_.assign(p_.size(), 0);
+  clearance_.assign(p_.size(), 0.0f);  // unknown: evaluated at the next step
+  clearance_rule_ = ClearanceRule::make(problem_->lipschitz, problem_->params.geps * problem_->h0,
+                                        kNearBoundaryRelative * problem_->h0, problem_->h0);
   for (int64_t f = 0; f < nfix_; ++f)
     on_boundary_[f] =
         eval_sdf(problem_->geometry.view(), p_[f]) >= -kNearBoundaryRelative * problem_->h0;
@@ -257,7 +262,10 @@ StepResult CpuEngine::move_points() {
       const Vec2 step = prm.deltat * total + prm.momentum * velocity_[i];
       velocity_[i] = step;
       Vec2 q = p_[i] + step;
-      const double d = eval_sdf(fd, q);
+      // Far enough inside, d's value decides nothing (clearance.cuh): its bound stands in.
+      const double inside = clearance_rule_.carried(clearance_[i], norm(step));
+      const double d = clearance_rule_.decides(inside) ? -inside : eval_sdf(fd, q);
+      clearance_[i] = round_down_to_float(-d);
       if (d > 0.0) q = project_step(fd, q, d, deps);
       on_boundary_[i] = d >= -kNearBoundaryRelative * h0;
       if (d < -geps) {

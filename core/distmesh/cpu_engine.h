@@ -14,6 +14,7 @@
 
 #include "core/common/thread_pool.h"
 #include "core/delaunay/delaunay.h"
+#include "core/distmesh/clearance.cuh"
 #include "core/distmesh/engine.h"
 
 namespace meshd {
@@ -46,12 +47,12 @@ class CpuEngine final : public Engine {
 
   ThreadPool& pool_;
   const CompiledProblem* problem_ = nullptr;
-  std::vector<Vec2> p_;  // #N by 2
-  std::vector<Vec2> pold_;
-  std::vector<Vec2> velocity_;
-  std::vector<char>
-      on_boundary_;  // #N: near the boundary at the last step (fixed: at load)  // #N by 2, the
-                     // last step (momentum)   // #N by 2, positions at the last triangulation
+  std::vector<Vec2> p_;            // #N by 2
+  std::vector<Vec2> pold_;         // #N by 2, positions at the last triangulation
+  std::vector<Vec2> velocity_;     // #N by 2, the last step (momentum)
+  std::vector<char> on_boundary_;  // #N: near the boundary at the last step (fixed: at load)
+  std::vector<float> clearance_;   // #N: how far inside each node is known to be (clearance.cuh)
+  ClearanceRule clearance_rule_{};
   int64_t nfix_ = 0;
   Triangulation dt_;                               // the full Delaunay triangulation
   std::vector<char> dt_keep_;                      // #M of dt_: centroid inside

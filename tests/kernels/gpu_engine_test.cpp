@@ -205,6 +205,22 @@ TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {
   EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
 }
 
+// The clearance (clearance.cuh) skips the distance far inside the domain; evaluating it at every
+// node and centroid (an infinite slope bound) gives the same bits on the device too.
+TEST_P(GpuAgreement, ClearanceLeavesTheMeshBitForBit) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem carried = compiled(GetParam(), 5000);
+  CompiledProblem evaluated = carried;
+  evaluated.lipschitz = INFINITY;
+  GpuEngine first(0), second(0);
+  const MeshResult a = generate_mesh(carried, first, nullptr, nullptr);
+  const MeshResult b = generate_mesh(evaluated, second, nullptr, nullptr);
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+  EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+}
+
 // The repaired triangulation must be Delaunay: every kept triangle counter-clockwise and every
 // edge between two kept triangles locally Delaunay (exact predicates), with as many triangles as
 // CGAL's rebuild of the same points, up to the collapsed boundary slivers a repair drops.
