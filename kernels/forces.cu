@@ -110,9 +110,9 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   Vec2 q = here + step;
   // Far enough inside, d's value decides nothing (clearance.cuh): its bound stands in.
   const double inside = a.clear.carried(a.clearance[i], norm(step));
-  const double d = a.clear.decides(inside) ? -inside : eval_sdf(a.fd, q);
+  const double d = a.clear.decides(inside) ? -inside : eval_sdf(a.fd, q, a.nested_index);
   a.clearance[i] = round_down_to_float(-d);
-  if (d > 0.0) q = project_step(a.fd, q, d, a.deps);
+  if (d > 0.0) q = project_step(a.fd, q, d, a.deps, a.nested_index);
   a.on_boundary[i] = d >= -a.near_boundary;
   a.p_next[i] = q;
   // Moves are measured in the node's own size (step_rule.cuh): h0 * the mean h of its bars. The

@@ -13,6 +13,7 @@
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/refill_folds.h"
 #include "core/distmesh/initial_triangulation.h"
+#include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
@@ -124,6 +125,7 @@ struct GpuEngine::Impl {
   ProgramView fd{};
   SizeView fh{};
   bool uniform = true;
+  bool nested_index = false;  // nests_indexed_unions (compile.h)
 
   // Nodes (fixed first).
   int64_t n = 0, nfix = 0;
@@ -183,6 +185,7 @@ struct GpuEngine::Impl {
           size_terms.data(),
           static_cast<uint32_t>(prob.size.terms.size())};
     uniform = prob.size.uniform();
+    nested_index = nests_indexed_unions(prob.geometry);
     nfix = static_cast<int64_t>(prob.fixed_points.size());
     fixed.upload(prob.fixed_points.data(), prob.fixed_points.size(), stream);
   }
@@ -356,6 +359,7 @@ struct GpuEngine::Impl {
     a.csr_other = csr_other.span();
     a.size = size.span();
     a.uniform = uniform;
+    a.nested_index = nested_index;
     a.scattered = scattered.span();
     a.scale = scale.data();
     a.fd = fd;
@@ -609,8 +613,8 @@ struct GpuEngine::Impl {
     const int64_t m = static_cast<int64_t>(tris.size());
     const double geps = problem->params.geps * problem->h0;
     keep.resize(m);
-    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, geps,
-                                keep.span(), stream);
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
+                                geps, keep.span(), stream);
     count.resize(m);
     position.resize(m);
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);

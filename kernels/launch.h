@@ -102,6 +102,7 @@ struct MoveArgs {
   DeviceSpan<const int32_t> csr_other;   // the entry's far end
   DeviceSpan<const double> size;         // #B, h at the midpoints; unused when uniform
   bool uniform;
+  bool nested_index;                   // the geometry nests indexed unions (eval_sdf)
   DeviceSpan<const double> scattered;  // #2N summed forces, or empty to gather through the CSR
   const double* scale;
   ProgramView fd;
@@ -217,7 +218,8 @@ void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri
 // keep[t] = fd(centroid) < -geps, decided by the nodes' clearances where they can.
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                             const ClearanceRule& clear, DeviceSpan<const Tri> tris, ProgramView fd,
-                            double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream);
+                            bool nested_index, double geps, DeviceSpan<uint8_t> keep,
+                            cudaStream_t stream);
 // count[t] = number of bars triangle t contributes (edges to a higher or no neighbour with
 // either side kept); then, with position = exclusive scan of count, writes them.
 void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,

@@ -190,14 +190,14 @@ __global__ void hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
 
 __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                                 ClearanceRule clear, DeviceSpan<const Tri> tris, ProgramView fd,
-                                double geps, DeviceSpan<uint8_t> keep) {
+                                bool nested_index, double geps, DeviceSpan<uint8_t> keep) {
   const int64_t t = thread_index();
   if (t >= tris.size) return;
   const Tri tri = tris[t];
   const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
   const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
   const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
-  keep[t] = clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid) < -geps;
+  keep[t] = clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid, nested_index) < -geps;
 }
 
 __global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
@@ -357,10 +357,11 @@ void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri
 
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                             const ClearanceRule& clear, DeviceSpan<const Tri> tris, ProgramView fd,
-                            double geps, DeviceSpan<uint8_t> keep, cudaStream_t stream) {
+                            bool nested_index, double geps, DeviceSpan<uint8_t> keep,
+                            cudaStream_t stream) {
   if (tris.size == 0) return;
-  centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, clearance, clear, tris, fd, geps,
-                                                                keep);
+  centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, clearance, clear, tris, fd,
+                                                                nested_index, geps, keep);
   MESHD_CHECK_LAUNCH("centroid_filter");
 }
 

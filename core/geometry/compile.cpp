@@ -284,4 +284,16 @@ SizeProgram compile_size_field(const SizeFieldSpec& spec) {
   return out;
 }
 
+bool nests_indexed_unions(const Program& program) {
+  std::vector<uint32_t> open;  // the ends of the indexed unions around the current instruction
+  for (uint32_t i = 0; i < program.code.size(); ++i) {
+    while (!open.empty() && i >= open.back()) open.pop_back();
+    const Instruction& ins = program.code[i];
+    if (ins.op != Op::kUnionIndexed || ins.bvh == kNoBvh) continue;
+    if (!open.empty()) return true;
+    open.push_back(ins.operand);
+  }
+  return false;
+}
+
 }  // namespace meshd

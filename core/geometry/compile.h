@@ -19,4 +19,9 @@ Program compile_geometry(const Shape& root);
 // feature-size term here is Error(kInternal).
 SizeProgram compile_size_field(const SizeFieldSpec& spec);
 
+// Whether an indexed union with a tree lies inside an operand of another (a coastline's land
+// polygons, each with its lakes): an evaluator that follows one level of index, as the GPU's
+// does by default (sdf_eval.cuh), folds the inner one in full at every point.
+bool nests_indexed_unions(const Program& program);
+
 }  // namespace meshd

@@ -6,15 +6,18 @@
 
 namespace meshd {
 
-// Forward-difference gradient of fd at p, where fd(p) = d; step deps (absolute).
-MESHD_HD inline Vec2 sdf_gradient(ProgramView fd, Vec2 p, double d, double deps) {
-  return {(eval_sdf(fd, {p.x + deps, p.y}) - d) / deps,
-          (eval_sdf(fd, {p.x, p.y + deps}) - d) / deps};
+// Forward-difference gradient of fd at p, where fd(p) = d; step deps (absolute). `nested` as in
+// eval_sdf.
+MESHD_HD inline Vec2 sdf_gradient(ProgramView fd, Vec2 p, double d, double deps,
+                                  bool nested = false) {
+  return {(eval_sdf(fd, {p.x + deps, p.y}, nested) - d) / deps,
+          (eval_sdf(fd, {p.x, p.y + deps}, nested) - d) / deps};
 }
 
 // One Newton step towards the zero level set: p - d grad / |grad|^2, with fd(p) = d.
-MESHD_HD inline Vec2 project_step(ProgramView fd, Vec2 p, double d, double deps) {
-  const Vec2 g = sdf_gradient(fd, p, d, deps);
+MESHD_HD inline Vec2 project_step(ProgramView fd, Vec2 p, double d, double deps,
+                                  bool nested = false) {
+  const Vec2 g = sdf_gradient(fd, p, d, deps, nested);
   const double g2 = dot(g, g);
   return g2 > 0.0 ? p - (d / g2) * g : p;
 }

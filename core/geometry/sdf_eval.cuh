@@ -41,8 +41,12 @@ MESHD_HD inline double sdf_grid(const double* params, const float* samples, uint
   const RegularGrid g = grid_at(params, samples, offset);
   const Vec2 l = grid_local(q, p);
   const Box b = g.box();
-  const double box[6] = {0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y),
-                         0.5 * (b.max.x - b.min.x), 0.5 * (b.max.y - b.min.y), 1.0, 0.0};
+  const double box[6] = {0.5 * (b.min.x + b.max.x),
+                         0.5 * (b.min.y + b.max.y),
+                         0.5 * (b.max.x - b.min.x),
+                         0.5 * (b.max.y - b.min.y),
+                         1.0,
+                         0.0};
   return q[kGridParams + 4] * max2(bilinear(g, l), sdf_box(box, l));
 }
 
@@ -248,6 +252,14 @@ MESHD_HD inline double eval_sdf_range(ProgramView prog, uint32_t begin, uint32_t
 
 MESHD_HD inline double eval_sdf(ProgramView prog, Vec2 p) {
   return eval_sdf_range(prog, 0, prog.size, p);
+}
+
+// The same through two levels of index where `nested` (nests_indexed_unions in compile.h): on
+// the device a coastline's lakes would otherwise be folded in full at every point (the whole
+// Archipelago Sea: a land polygon with 166 lakes), while the programs that need one level keep
+// the lighter evaluator. The same value either way; the host always follows two levels.
+MESHD_HD inline double eval_sdf(ProgramView prog, Vec2 p, bool nested) {
+  return nested ? eval_program<2>(prog, 0, prog.size, p, nullptr) : eval_sdf(prog, p);
 }
 
 }  // namespace meshd

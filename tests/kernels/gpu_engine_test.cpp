@@ -19,6 +19,7 @@
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/refine.h"
+#include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
@@ -169,10 +170,10 @@ std::vector<StepResult> graph_batch(const std::string& geometry, StepRule rule) 
 TEST_P(GpuAgreement, StepGraphStopsWhenThePatienceRunsOut) {
   SKIP_WITHOUT_GPU();
   StepRule rule;
-  rule.dptol = 1e9;              // every step settled
-  rule.max_move_factor = 0.0;    // ... but none with its largest move small enough
+  rule.dptol = 1e9;            // every step settled
+  rule.max_move_factor = 0.0;  // ... but none with its largest move small enough
   rule.patience = 5;
-  rule.settling = {0.0, 2};      // no move falls under 0
+  rule.settling = {0.0, 2};  // no move falls under 0
   EXPECT_EQ(graph_batch(GetParam(), rule).size(), 3u);
 }
 
@@ -461,6 +462,38 @@ TEST(GpuIndexedGeometry, ManyHolesAndALongPolygonMatchTheCpuEngine) {
                           [](const Instruction& i) { return i.op == Op::kUnionIndexed; }),
             1);
   ASSERT_NE(c.size.shapes.code[0].bvh, kNoBvh);
+  ThreadPool pool;
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
+  const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
+  expect_meshes_agree(rc, rg);
+  EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+}
+
+// Islands with lakes, as an imported coastline has them: the sea in a box minus 12 islands, each
+// a square minus 9 lakes, so the islands' union and each island's lakes are indexed unions, one
+// inside the other (nests_indexed_unions). The device follows both levels there, as the host
+// always does.
+TEST(GpuIndexedGeometry, IslandsWithLakesMatchTheCpuEngine) {
+  SKIP_WITHOUT_GPU();
+  std::vector<Shape> islands;
+  for (int i = 0; i < 12; ++i) {
+    const Vec2 lo{1.0 + 2.0 * (i % 4), 1.0 + 2.5 * (i / 4)};
+    std::vector<Shape> ops{Shape{Rectangle{lo, lo + Vec2{1.2, 1.2}}, "island", ""}};
+    for (int k = 0; k < 9; ++k)
+      ops.push_back(
+          Shape{Circle{lo + Vec2{0.25 + 0.35 * (k % 3), 0.25 + 0.35 * (k / 3)}, 0.1}, "lake", ""});
+    islands.push_back(Shape{Csg{CsgOp::kDifference, ops}, "", ""});
+  }
+  Problem p;
+  p.geometry = Shape{Csg{CsgOp::kDifference,
+                         {Shape{Rectangle{{0, 0}, {9, 9}}, "outer", ""},
+                          Shape{Csg{CsgOp::kUnion, islands}, "", ""}}},
+                     "", ""};
+  p.h0 = 0.06;
+  const CompiledProblem c = compile_problem(p);
+  ASSERT_TRUE(nests_indexed_unions(c.geometry));
   ThreadPool pool;
   CpuEngine cpu(pool);
   GpuEngine gpu(0);

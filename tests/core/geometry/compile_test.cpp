@@ -65,6 +65,24 @@ TEST(CompileGeometry, PostfixLayoutOfASmallTree) {
   EXPECT_EQ(p.code[4].operand, 15u);
 }
 
+// Islands with lakes: a union of ten squares, each minus nine disks, indexes the union and each
+// island's lakes, one inside the other; the squares alone, or one island, index one level.
+TEST(CompileGeometry, IslandsWithLakesNestIndexedUnions) {
+  auto island = [](double x) {
+    std::vector<Shape> ops{rectangle({x, 0}, {x + 0.9, 0.9})};
+    for (int k = 0; k < 9; ++k) ops.push_back(circle({x + 0.1 + 0.08 * k, 0.45}, 0.03));
+    return csg(CsgOp::kDifference, ops);
+  };
+  std::vector<Shape> islands, squares;
+  for (int i = 0; i < 10; ++i) {
+    islands.push_back(island(i));
+    squares.push_back(rectangle({1.0 * i, 0}, {i + 0.9, 0.9}));
+  }
+  EXPECT_TRUE(nests_indexed_unions(compile_geometry(csg(CsgOp::kUnion, islands))));
+  EXPECT_FALSE(nests_indexed_unions(compile_geometry(csg(CsgOp::kUnion, squares))));
+  EXPECT_FALSE(nests_indexed_unions(compile_geometry(island(0))));
+}
+
 TEST(CompileGeometry, PolygonParameters) {
   const std::vector<Vec2> v = {{0, 0}, {2, 0}, {1, 1.5}};
   const Program p = compile_geometry(Shape{Polygon{v}, "", ""});
