@@ -433,6 +433,17 @@ TEST_P(GpuAgreement, LaggedScaleKeepsTheMesh) {
 
 INSTANTIATE_TEST_SUITE_P(Geometries, GpuAgreement, ::testing::Values("G1", "G2", "G3", "G4", "G5"));
 
+// Whole meshes of `c` on both engines agree, boundary names included.
+void expect_engines_agree(const CompiledProblem& c) {
+  ThreadPool pool;
+  CpuEngine cpu(pool);
+  GpuEngine gpu(0);
+  const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
+  const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
+  expect_meshes_agree(rc, rg);
+  EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+}
+
 // The spatial indexes on the device (bvh.h): a square minus 60 disks (an indexed difference)
 // and minus a lake whose shore is a polygon of 400 vertices (an indexed polygon), graded
 // toward the lake through the same polygon. The device evaluates them as the host does.
@@ -462,13 +473,7 @@ TEST(GpuIndexedGeometry, ManyHolesAndALongPolygonMatchTheCpuEngine) {
                           [](const Instruction& i) { return i.op == Op::kUnionIndexed; }),
             1);
   ASSERT_NE(c.size.shapes.code[0].bvh, kNoBvh);
-  ThreadPool pool;
-  CpuEngine cpu(pool);
-  GpuEngine gpu(0);
-  const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
-  const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
-  expect_meshes_agree(rc, rg);
-  EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+  expect_engines_agree(c);
 }
 
 // Islands with lakes, as an imported coastline has them: the sea in a box minus 12 islands, each
@@ -494,13 +499,7 @@ TEST(GpuIndexedGeometry, IslandsWithLakesMatchTheCpuEngine) {
   p.h0 = 0.06;
   const CompiledProblem c = compile_problem(p);
   ASSERT_TRUE(nests_indexed_unions(c.geometry));
-  ThreadPool pool;
-  CpuEngine cpu(pool);
-  GpuEngine gpu(0);
-  const MeshResult rc = generate_mesh(c, cpu, nullptr, nullptr);
-  const MeshResult rg = generate_mesh(c, gpu, nullptr, nullptr);
-  expect_meshes_agree(rc, rg);
-  EXPECT_EQ(rg.mesh.boundary_names, rc.mesh.boundary_names);
+  expect_engines_agree(c);
 }
 
 // Gridded size fields on the device (size_eval.cuh reads the grid that load_problem uploads):
