@@ -12,6 +12,7 @@
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/refill_folds.h"
+#include "core/delaunay/triangle_neighbors.h"
 #include "core/distmesh/initial_triangulation.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
@@ -281,9 +282,19 @@ struct GpuEngine::Impl {
     use_completion(
         complete_triangulation(download_points(), std::move(partial), static_cast<int32_t>(nfix)));
   }
-  // The same for triangles whose neighbours are not known (a refined level's, refine.h).
+  // The same for triangles whose neighbours are not known (a refined level's, refine.h). A
+  // boundary midpoint projected onto a concave stretch can turn its split triangles over: those
+  // are cut out first (refill_folds.h), so that the completion fills them instead of failing.
   void prepare_completion(const std::vector<std::array<int32_t, 3>>& partial) {
-    use_completion(complete_triangulation(download_points(), partial, static_cast<int32_t>(nfix)));
+    const std::vector<Vec2> points = download_points();
+    Triangulation split;
+    split.triangles = partial;
+    if (!triangle_neighbors(split.triangles, points.size(), split.neighbors)) {
+      use_completion({});
+      return;
+    }
+    cut_folds(points, split);
+    use_completion(complete_triangulation(points, std::move(split), static_cast<int32_t>(nfix)));
   }
   // Uploads a completion for the next full triangulation, or notes that it failed.
   void use_completion(const Triangulation& t) {

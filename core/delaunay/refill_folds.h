@@ -16,10 +16,14 @@
 
 namespace meshd {
 
-// Returns a triangulation of the convex hull of `points` (#N by 2) that keeps every triangle of
-// `tri` (with neighbours) sharing no node with a turned-over or flat one (exact predicates), or
-// an empty one when `tri` has no such triangle or the completion fails: then the caller
-// triangulates from scratch. `always_gap` as in complete_triangulation. Not Delaunay in
+// Removes from `tri` (with neighbours; -1 across the removed ones after) every triangle that
+// shares a node with one turned over or flat for `points` (#N by 2, exact predicates). Returns
+// whether there was any.
+bool cut_folds(const std::vector<Vec2>& points, Triangulation& tri);
+
+// cut_folds, then the completion of what is left: a triangulation of the convex hull of
+// `points`, or an empty one when `tri` has no fold or the completion fails (then the caller
+// triangulates from scratch). `always_gap` as in complete_triangulation. Not Delaunay in
 // general: flip it (lawson_repair.h or the GPU engine's repair).
 Triangulation refill_folds(const std::vector<Vec2>& points, Triangulation tri, int32_t always_gap);
 

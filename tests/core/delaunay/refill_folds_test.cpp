@@ -28,8 +28,7 @@ std::vector<Vec2> jittered_lattice(int side, uint32_t seed) {
 
 // Triangles as sets: each rotated to start at its smallest index, then sorted.
 std::vector<std::array<int32_t, 3>> canonical(std::vector<std::array<int32_t, 3>> triangles) {
-  for (auto& t : triangles)
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  for (auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   std::sort(triangles.begin(), triangles.end());
   return triangles;
 }
@@ -78,7 +77,8 @@ TEST(RefillFolds, ManyFoldsAtOnceNextToEachOtherAndToTheHull) {
     const Triangulation before = delaunay_triangulate(points);
     std::mt19937 rng(seed);
     // Some next to each other (merged holes), some one row in from the hull.
-    for (int i = 0; i < 8; ++i) push_across(before, static_cast<int32_t>(rng() % points.size()), points);
+    for (int i = 0; i < 8; ++i)
+      push_across(before, static_cast<int32_t>(rng() % points.size()), points);
     push_across(before, 1 * 40 + 20, points);
     push_across(before, 1 * 40 + 21, points);
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -87,6 +87,24 @@ TEST(RefillFolds, ManyFoldsAtOnceNextToEachOtherAndToTheHull) {
     ASSERT_FALSE(lawson_repair(points, keep, none, flipped).ok) << "the moves made no fold";
     expect_refilled_to_delaunay(points, refill_folds(points, before, 0));
   }
+}
+
+TEST(RefillFolds, CuttingAFoldLeavesRightTurningTrianglesWithTheirLinks) {
+  std::vector<Vec2> points = jittered_lattice(20, 4);
+  Triangulation tri = delaunay_triangulate(points);
+  const int32_t pushed = 10 * 20 + 9;
+  ASSERT_TRUE(push_across(tri, pushed, points));
+  const size_t before = tri.triangles.size();
+  ASSERT_TRUE(cut_folds(points, tri));
+  EXPECT_LT(tri.triangles.size(), before);
+  for (const auto& v : tri.triangles) {
+    ASSERT_GT(orientation_sign(points[v[0]], points[v[1]], points[v[2]]), 0);
+    EXPECT_TRUE(v[0] != pushed && v[1] != pushed && v[2] != pushed);
+  }
+  std::vector<std::array<int32_t, 3>> links;
+  ASSERT_TRUE(triangle_neighbors(tri.triangles, points.size(), links));
+  EXPECT_EQ(links, tri.neighbors);
+  EXPECT_FALSE(cut_folds(points, tri)) << "a second cut found another fold";
 }
 
 TEST(RefillFolds, NothingToRefillWithoutAFold) {
