@@ -189,6 +189,15 @@ TEST_P(GpuAgreement, StepGraphStopsWhenTheRmsPatienceRunsOut) {
   EXPECT_EQ(graph_batch(GetParam(), rule).size(), 3u);
 }
 
+// Two runs that must be the same bits: the same steps and the same mesh.
+void expect_same_run(const MeshResult& a, const MeshResult& b) {
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+  EXPECT_EQ(a.stats.cleanup_iterations, b.stats.cleanup_iterations);
+  EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+}
+
 // The loop asks the graph for batches of steps (engine.h): the whole job runs the same
 // iterations and gives the same mesh, bit for bit, as with one step per round trip.
 TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {
@@ -197,13 +206,8 @@ TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {
   GpuEngine graph(0), direct(0);
   graph.set_step_graph(true);
   direct.set_step_graph(false);
-  const MeshResult a = generate_mesh(c, graph, nullptr, nullptr);
-  const MeshResult b = generate_mesh(c, direct, nullptr, nullptr);
-  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
-  EXPECT_EQ(a.stats.cleanup_iterations, b.stats.cleanup_iterations);
-  EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
-  EXPECT_EQ(a.mesh.points, b.mesh.points);
-  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  expect_same_run(generate_mesh(c, graph, nullptr, nullptr),
+                  generate_mesh(c, direct, nullptr, nullptr));
 }
 
 // The clearance (clearance.cuh) skips the distance far inside the domain; evaluating it at every
@@ -214,12 +218,8 @@ TEST_P(GpuAgreement, ClearanceLeavesTheMeshBitForBit) {
   CompiledProblem evaluated = carried;
   evaluated.lipschitz = INFINITY;
   GpuEngine first(0), second(0);
-  const MeshResult a = generate_mesh(carried, first, nullptr, nullptr);
-  const MeshResult b = generate_mesh(evaluated, second, nullptr, nullptr);
-  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
-  EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
-  EXPECT_EQ(a.mesh.points, b.mesh.points);
-  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  expect_same_run(generate_mesh(carried, first, nullptr, nullptr),
+                  generate_mesh(evaluated, second, nullptr, nullptr));
 }
 
 // The repaired triangulation must be Delaunay: every kept triangle counter-clockwise and every
