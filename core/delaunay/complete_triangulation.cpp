@@ -170,13 +170,4 @@ Triangulation complete_triangulation(const std::vector<Vec2>& points, Triangulat
   }
 }
 
-Triangulation complete_triangulation(const std::vector<Vec2>& points,
-                                     std::vector<std::array<int32_t, 3>> partial,
-                                     int32_t always_gap) {
-  Triangulation u;
-  u.triangles = std::move(partial);
-  if (!triangle_neighbors(u.triangles, points.size(), u.neighbors)) return {};
-  return complete_triangulation(points, std::move(u), always_gap);
-}
-
 }  // namespace meshd

@@ -25,18 +25,13 @@
 namespace meshd {
 
 // Returns a triangulation of the convex hull of `points` (#N by 2) that contains every triangle
-// of `partial` (#M by 3, counter-clockwise, non-overlapping), with neighbours (delaunay.h), or an
-// empty one when a check fails (every boundary edge of U an edge of the gaps' triangulation,
-// bordered there by gap triangles on its far side only, 2 N - 2 - H triangles for H hull edges, gap
-// triangles counter-clockwise by exact predicates, open edges only on the hull): the caller then
-// triangulates from scratch. Not Delaunay in general: flip it (lawson_repair.h or the GPU
-// engine's repair).
-Triangulation complete_triangulation(const std::vector<Vec2>& points,
-                                     std::vector<std::array<int32_t, 3>> partial,
-                                     int32_t always_gap);
-
-// The same for a partial triangulation whose neighbours are known (-1 across U's boundary), as
-// when they survive from the triangulation it was cut from: no pass over all its edges.
+// of `partial` (#M by 3, counter-clockwise, non-overlapping; its neighbours -1 across U's
+// boundary, as triangle_neighbors.h finds them or as they survive from the triangulation it was
+// cut from), with neighbours (delaunay.h), or an empty one when a check fails (every boundary
+// edge of U an edge of the gaps' triangulation, bordered there by gap triangles on its far side
+// only, 2 N - 2 - H triangles for H hull edges, gap triangles counter-clockwise by exact
+// predicates, open edges only on the hull): the caller then triangulates from scratch. Not
+// Delaunay in general: flip it (lawson_repair.h or the GPU engine's repair).
 Triangulation complete_triangulation(const std::vector<Vec2>& points, Triangulation partial,
                                      int32_t always_gap);
 

@@ -77,16 +77,16 @@ TopologyStats CpuEngine::retriangulate(bool full) {
       // A triangle turned over since the last triangulation: flips cannot repair that, but
       // the fold is local (refill_folds.h).
       Triangulation refilled = refill_folds(p_, dt_, static_cast<int32_t>(nfix_));
-      const std::vector<char> every(refilled.triangles.size(), 1);
-      const RepairResult again = lawson_repair(p_, every, on_boundary_, refilled);
-      if (!refilled.triangles.empty() && again.ok) {
-        dt_ = std::move(refilled);
-        stats.flips = again.flips;
-        stats.folds_refilled = true;
-      } else {
-        stats.full = true;
-        stats.repair_failed = true;
+      if (!refilled.triangles.empty()) {
+        const std::vector<char> every(refilled.triangles.size(), 1);
+        const RepairResult again = lawson_repair(p_, every, on_boundary_, refilled);
+        stats.folds_refilled = again.ok;
+        if (again.ok) {
+          dt_ = std::move(refilled);
+          stats.flips = again.flips;
+        }
       }
+      stats.full = stats.repair_failed = !stats.folds_refilled;
     }
   }
   if (stats.full) dt_ = delaunay_triangulate(p_);
