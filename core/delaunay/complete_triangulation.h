@@ -17,12 +17,16 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/common/vec2.h"
 #include "core/delaunay/delaunay.h"
 
 namespace meshd {
+
+// Retries of a completion after a failed check, each without the triangles next to a gap.
+constexpr int kMaxCompletionErosions = 4;
 
 // Returns a triangulation of the convex hull of `points` (#N by 2) that contains every triangle
 // of `partial` (#M by 3, counter-clockwise, non-overlapping; its neighbours -1 across U's
@@ -34,5 +38,29 @@ namespace meshd {
 // Delaunay in general: flip it (lawson_repair.h or the GPU engine's repair).
 Triangulation complete_triangulation(const std::vector<Vec2>& points, Triangulation partial,
                                      int32_t always_gap);
+
+// The same in parts, for an engine that keeps U elsewhere (the GPU engine keeps it on the
+// device and sends the host only what bounds the gaps).
+//
+// What bounds U's gaps: their points (on U's boundary, in no triangle of U, or among the first
+// always_gap), in increasing order, with their positions; U's boundary edges (walls) directed
+// with U on their left, each with its use 3 t + k in U (triangle t's neighbour slot k).
+struct GapBoundary {
+  std::vector<int32_t> points;
+  std::vector<Vec2> positions;
+  std::vector<std::array<int32_t, 2>> walls;
+  std::vector<int64_t> wall_uses;
+};
+// The gaps' triangles (point indices of all N), numbered u_count on, with their neighbours (gap
+// triangles, U's triangles across walls, -1 on the hull), and for each wall off the hull the
+// gap triangle across it: (its use in U, that triangle).
+struct GapFill {
+  std::vector<std::array<int32_t, 3>> triangles, neighbors;
+  std::vector<std::pair<int64_t, int32_t>> wall_links;
+};
+// Triangulates the gaps of a partial triangulation U of `n` points with `u_count` triangles
+// from what bounds them. Returns false when a check of complete_triangulation fails: then the
+// caller erodes U (drops its triangles with an open edge) and tries again, or gives up.
+bool fill_gaps(const GapBoundary& boundary, int64_t n, int64_t u_count, GapFill& fill);
 
 }  // namespace meshd
