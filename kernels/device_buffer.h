@@ -65,6 +65,14 @@ class DeviceBuffer {
     if (n > 0)
       MESHD_CUDA_CHECK(cudaMemcpyAsync(ptr_, host, n * sizeof(T), cudaMemcpyHostToDevice, stream));
   }
+  // A copy of `from` (resize, then a device-to-device copy): unlike a swap, each buffer keeps its
+  // own capacity, so that the arena stays warm from one job to the next.
+  void assign(const DeviceBuffer& from, cudaStream_t stream) {
+    resize(from.size_);
+    if (size_ > 0)
+      MESHD_CUDA_CHECK(
+          cudaMemcpyAsync(ptr_, from.ptr_, size_ * sizeof(T), cudaMemcpyDeviceToDevice, stream));
+  }
   void download(T* host, cudaStream_t stream) const {
     if (size_ > 0)
       MESHD_CUDA_CHECK(

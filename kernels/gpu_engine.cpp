@@ -8,16 +8,15 @@
 #include <memory>
 
 #include "core/common/error.h"
-#include "core/delaunay/complete_triangulation.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
-#include "core/delaunay/refill_folds.h"
-#include "core/delaunay/triangle_neighbors.h"
 #include "core/distmesh/initial_triangulation.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
+#include "kernels/complete_gaps.h"
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
+#include "kernels/refine_level.h"
 #include "kernels/scan.h"
 #include "kernels/step_graph.h"
 
@@ -51,12 +50,6 @@ class PinnedValue {
  private:
   T* ptr_ = nullptr;
 };
-
-int bits_for(int64_t n) {
-  int bits = 1;
-  while ((int64_t{1} << bits) < n) ++bits;
-  return bits;
-}
 
 }  // namespace
 
@@ -161,9 +154,10 @@ struct GpuEngine::Impl {
   DeviceBuffer<gpu::TopologyCounters> counters;
   DeviceBuffer<unsigned long long> h_min_bits;
   DeviceBuffer<uint8_t> temp;
+  gpu::RefineScratch refine_scratch;
+  gpu::GapScratch gaps;
   PinnedValue<gpu::StepBatch> h_batch;
   PinnedValue<gpu::TopologyCounters> h_counters;
-  PinnedValue<int32_t> h_ints;  // two ints: last position and last flag/count
 
   void sync() { MESHD_CUDA_CHECK(cudaStreamSynchronize(stream)); }
   void use_device() { MESHD_CUDA_CHECK(cudaSetDevice(device)); }
@@ -227,18 +221,19 @@ struct GpuEngine::Impl {
   int64_t compact_nodes(int64_t max_removed) {
     position.resize(n);
     gpu::exclusive_scan(flags.data(), position.data(), n, temp, stream);
-    const int64_t kept = last_total(position, flags);
+    const int64_t kept = gpu::scan_total(position.data(), flags.data(), n, stream);
     if (kept == n || n - kept > max_removed) return 0;
     // The triangles untouched by the removal survive, renumbered, with their links: the next
-    // full triangulation completes them (complete_triangulation.h) instead of starting over.
-    Triangulation survivors;
+    // full triangulation completes them (complete_gaps.h) instead of starting over.
+    bool survived = false;
     if (have_triangulation) {
       // keep serves as scratch: the next triangulation sets it again.
       keep.resize(tris.size());
       gpu::launch_surviving_triangles(tris.span(), flags.span(), keep.span(), stream);
-      compact_alive_triangles(keep);
+      survived = compact_alive_triangles(keep) > 0;
       gpu::launch_renumber_vertices(tris_tmp.span(), position.span(), stream);
-      survivors = download_triangulation(tris_tmp, nbrs_tmp);
+      tris.assign(tris_tmp, stream);
+      nbrs.assign(nbrs_tmp, stream);
     }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
@@ -246,7 +241,7 @@ struct GpuEngine::Impl {
     n = kept;
     p.resize(n);
     reset_node_state();
-    if (!survivors.triangles.empty()) prepare_completion(std::move(survivors));
+    if (survived) prepare_completion();
     return removed;
   }
 
@@ -256,7 +251,7 @@ struct GpuEngine::Impl {
     const int64_t m = static_cast<int64_t>(tris.size());
     count.resize(m);
     gpu::exclusive_scan(alive.data(), count.data(), m, temp, stream);
-    const int64_t kept = last_total(count, alive);
+    const int64_t kept = gpu::scan_total(count.data(), alive.data(), m, stream);
     tris_tmp.resize(kept);
     nbrs_tmp.resize(kept);
     gpu::launch_compact_triangles(tris.span(), nbrs.span(), alive.span(), count.span(),
@@ -264,62 +259,19 @@ struct GpuEngine::Impl {
     return kept;
   }
 
-  Triangulation download_triangulation(const DeviceBuffer<Tri>& t, const DeviceBuffer<Tri>& nb) {
-    static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
-    Triangulation out;
-    out.triangles.resize(t.size());
-    out.neighbors.resize(nb.size());
-    t.download(reinterpret_cast<Tri*>(out.triangles.data()), stream);
-    nb.download(reinterpret_cast<Tri*>(out.neighbors.data()), stream);
-    sync();
-    return out;
-  }
-
-  // Completes `partial` (triangles of the current nodes) on the host and uploads the result
-  // for the next full triangulation; the nodes may have moved since those triangles were made,
-  // so the flips check orientations first.
-  void prepare_completion(Triangulation partial) {
-    use_completion(
-        complete_triangulation(download_points(), std::move(partial), static_cast<int32_t>(nfix)));
-  }
-  // The same for triangles whose neighbours are not known (a refined level's, refine.h). A
-  // boundary midpoint projected onto a concave stretch can turn its split triangles over: those
-  // are cut out first (refill_folds.h), so that the completion fills them instead of failing.
-  void prepare_completion(const std::vector<std::array<int32_t, 3>>& partial) {
-    const std::vector<Vec2> points = download_points();
-    Triangulation split;
-    split.triangles = partial;
-    if (!triangle_neighbors(split.triangles, points.size(), split.neighbors)) {
-      use_completion({});
-      return;
-    }
-    cut_folds(points, split);
-    use_completion(complete_triangulation(points, std::move(split), static_cast<int32_t>(nfix)));
-  }
-  // Uploads a completion for the next full triangulation, or notes that it failed.
-  void use_completion(const Triangulation& t) {
-    if (t.triangles.empty()) {
-      completion_failed = true;  // reported as a fallback by the next retriangulate
-      return;
-    }
-    tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
-    nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
-    prepared = true;
+  // Completes tris and nbrs (triangles of some of the current nodes, linked) for the next full
+  // triangulation (complete_gaps.h); the nodes may have moved since those triangles were made,
+  // so the flips check orientations first. Returns false when the completion failed: then the
+  // next full triangulation starts over with CGAL, and reports a fallback.
+  bool prepare_completion() {
+    // A survivor or a split triangle may have turned over: cut out first, the fold then filled
+    // with the gaps.
+    const bool folded = gpu::cut_folds(p.span(), tris, nbrs, gaps, temp, stream);
+    prepared = (!folded && covers_hull()) ||
+               gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
     prepared_checked = false;
-    sync();  // t is a host vector
-  }
-
-  // position[last] + flag[last]: the total of an exclusive scan.
-  int64_t last_total(const DeviceBuffer<int32_t>& scanned, const DeviceBuffer<uint8_t>& flag) {
-    if (scanned.size() == 0) return 0;
-    const size_t last = scanned.size() - 1;
-    uint8_t last_flag = 0;
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_ints.get(), scanned.data() + last, sizeof(int32_t),
-                                     cudaMemcpyDeviceToHost, stream));
-    MESHD_CUDA_CHECK(
-        cudaMemcpyAsync(&last_flag, flag.data() + last, 1, cudaMemcpyDeviceToHost, stream));
-    sync();
-    return *h_ints.get() + last_flag;
+    completion_failed = !prepared;
+    return prepared;
   }
 
   // Step 4. The step itself needs only the sizes of a graded field; density control needs the
@@ -488,15 +440,12 @@ struct GpuEngine::Impl {
   }
 
   // repair, and where a node crossed an edge (a triangle turned over, which flips cannot undo)
-  // the fold cut out and filled on the host (refill_folds.h), then flipped. Returns the flips,
-  // or -1 when a rebuild is needed; `refilled` tells whether a fold was mended.
+  // the fold cut out and filled (refill_folds.h, here through complete_gaps.h), then flipped.
+  // Returns the flips, or -1 when a rebuild is needed; `refilled` tells whether a fold was mended.
   int64_t repair_folds_too(int64_t& dropped, bool& refilled) {
     const int64_t flips = repair(dropped);
     if (flips >= 0) return flips;
-    Triangulation mended = refill_folds(download_points(), download_triangulation(tris, nbrs),
-                                        static_cast<int32_t>(nfix));
-    if (mended.triangles.empty()) return -1;
-    use_completion(mended);
+    if (!prepare_completion()) return -1;
     refilled = true;
     return flip_prepared();
   }
@@ -655,7 +604,7 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
     gpu::launch_bar_ends(bars.span(), key.span(), value.span(), degree.span(), stream);
     gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * nb,
-                    bits_for(n), temp, stream);
+                    gpu::bits_for(n), temp, stream);
     gpu::launch_csr_other_ends(bars.span(), csr_entry.span(), csr_other.span(), stream);
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
@@ -665,7 +614,7 @@ struct GpuEngine::Impl {
     if (m > 0) {
       position.resize(m);
       gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
-      kept = last_total(position, keep);
+      kept = gpu::scan_total(position.data(), keep.data(), m, stream);
     }
     TopologyStats stats;
     stats.triangles = kept;
@@ -729,7 +678,7 @@ int64_t GpuEngine::initialize(const CompiledProblem& problem) {
                         s.flags.span(), s.stream);
   s.position.resize(total);
   gpu::exclusive_scan(s.flags.data(), s.position.data(), total, s.temp, s.stream);
-  const int64_t kept = s.last_total(s.position, s.flags);
+  const int64_t kept = gpu::scan_total(s.position.data(), s.flags.data(), total, s.stream);
   s.n = s.nfix + kept;
   s.p.resize(s.n);
   if (s.nfix > 0)
@@ -751,11 +700,19 @@ int64_t GpuEngine::load_points(const CompiledProblem& problem, const std::vector
   return s.n;
 }
 
-void GpuEngine::offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) {
-  if (triangles.empty()) return;
+int64_t GpuEngine::refine(const CompiledProblem& finer) {
   Impl& s = *impl_;
   s.use_device();
-  s.prepare_completion(triangles);
+  s.load_problem(finer);
+  const gpu::RefineRule rule{s.fd, s.fh, finer.h0, finer.params.deps * finer.h0, s.nfix};
+  s.n = gpu::refine_level(rule, s.keep.span(), s.p, s.tris, s.nbrs, s.refine_scratch, s.temp,
+                          s.stream);
+  s.reset_node_state();
+  // The split triangles start the next full triangulation. They have gaps where the coarse
+  // level's repairs dropped turned-over slivers, pockets along the hull where a boundary midpoint
+  // was projected out of it, and folds where one was projected past a neighbour: completed.
+  s.prepare_completion();
+  return s.n;
 }
 
 TopologyStats GpuEngine::retriangulate(bool full) {
@@ -786,8 +743,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     int64_t flips = s.repair_folds_too(dropped, stats.folds_refilled);
     if (flips >= 0 && !s.covers_hull()) {
       // Close the gaps with CGAL on their boundary points alone, then flip again.
-      s.prepare_completion(s.download_triangulation(s.tris, s.nbrs));
-      flips = s.prepared ? s.flip_prepared() : -1;
+      flips = s.prepare_completion() ? s.flip_prepared() : -1;
     }
     if (flips >= 0) {
       stats.flips = flips;

@@ -2,10 +2,11 @@
 //
 // Points, triangles, bars and forces stay on the device for the whole job; the host sees the
 // scalars of each step and the copies it asks for. Triangulations are repaired on the device by
-// parallel Lawson flips. The first one is built from the initial lattice (initial_triangulation.h)
-// and, after density control or clean-up removed points, the surviving triangles are completed
-// (complete_triangulation.h); CGAL triangulates all points on the host only when those checks
-// fail or a repair finds a turned-over triangle.
+// parallel Lawson flips. The first one is built from the initial lattice (initial_triangulation.h),
+// a refined level's from the coarse level's triangles split on the device (refine_level.h). The
+// triangles that survive a removal of points, a refined level's and a repair's folded ones cut
+// out are completed with CGAL on the gaps' points alone (complete_gaps.h); CGAL triangulates all
+// points on the host only when that fails.
 // Device buffers grow and are kept between jobs (the arena): a job no larger than the largest
 // one before allocates nothing. One engine per device; not thread-safe.
 //
@@ -62,9 +63,8 @@ class GpuEngine final : public Engine {
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
-  // Completes `triangles` on the host (CGAL on the gaps' points alone) and flips the result on
-  // the device at the next full triangulation.
-  void offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) override;
+  // On the device (refine_level.h); the split triangles start the next full triangulation.
+  int64_t refine(const CompiledProblem& finer) override;
   TopologyStats retriangulate(bool full) override;
   int64_t remove_crowded_points(int64_t max_removed) override;
   StepResult move_points() override;

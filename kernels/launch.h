@@ -21,6 +21,13 @@ constexpr int kBlock = 256;
 
 inline int64_t blocks_for(int64_t n) { return (n + kBlock - 1) / kBlock; }
 
+// Bits that hold every index below n: the radix sorts' key width.
+inline int bits_for(int64_t n) {
+  int bits = 1;
+  while ((int64_t{1} << bits) < n) ++bits;
+  return bits;
+}
+
 // The bar measure reduces as it goes over the bars with at most this many blocks: one resident
 // wave on an H100/H200 at full occupancy, so that the one-block kernel that sums the blocks'
 // partials reads a thousand of them rather than ten thousand (at a million nodes, 22 us a step
@@ -44,9 +51,15 @@ struct StepSums {
   double bar_l2;  // sum over nodes of their bars' L^2 before the step: 2 sum L^2 (gather only)
 };
 
+// A triangle's corners, or its neighbours: slot k across the edge opposite corner k, -1 on the
+// hull.
 struct Tri {
   int32_t v[3];
 };
+// The slot of `nbr` (a triangle's neighbours) that holds triangle `value`.
+MESHD_HD inline int slot_of(const Tri& nbr, int32_t value) {
+  return nbr.v[0] == value ? 0 : (nbr.v[1] == value ? 1 : 2);
+}
 struct Bar {
   int32_t a, b;
 };

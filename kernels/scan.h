@@ -14,8 +14,18 @@ void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uin
                     cudaStream_t stream);
 void exclusive_scan(const uint8_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
                     cudaStream_t stream);
+// The total of an exclusive scan of n flags (or counts): position[n - 1] + flag[n - 1], read
+// back to the host (which waits for the stream); 0 for n = 0.
+int64_t scan_total(const int32_t* position, const uint8_t* flag, int64_t n, cudaStream_t stream);
+int64_t scan_total(const int32_t* position, const int32_t* flag, int64_t n, cudaStream_t stream);
 // Stable: equal keys keep the order of values_in, which makes the CSR deterministic.
 void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,
+                int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
+                cudaStream_t stream);
+void sort_pairs(const uint32_t* keys_in, uint32_t* keys_out, const int32_t* values_in,
+                int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
+                cudaStream_t stream);
+void sort_pairs(const uint64_t* keys_in, uint64_t* keys_out, const int32_t* values_in,
                 int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
                 cudaStream_t stream);
 

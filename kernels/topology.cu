@@ -8,17 +8,10 @@
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
 #include "kernels/predicates.cuh"
+#include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
 namespace {
-
-__device__ inline int64_t thread_index() {
-  return blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x;
-}
-
-__device__ inline int slot_of(const Tri& nbr, int32_t value) {
-  return nbr.v[0] == value ? 0 : (nbr.v[1] == value ? 1 : 2);
-}
 
 __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   bool h0 = false, h1 = false;

@@ -9,8 +9,6 @@
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
-#include "core/distmesh/refine.h"
-#include "core/distmesh/spatial_order.h"
 #include "core/mesh/boundary.h"
 
 namespace meshd {
@@ -70,12 +68,7 @@ class Loop {
         // 1-2. Initial points.
         engine_.initialize(*current_);
       } else {
-        engine_.read_points(points_);
-        engine_.read_triangles(triangles_);
-        auto refined = refine_by_midpoints(*current_, points_, triangles_);
-        hilbert_order(points_, static_cast<int32_t>(current_->fixed_points.size()), refined);
-        engine_.load_points(*current_, points_);
-        engine_.offer_triangulation(refined);
+        engine_.refine(*current_);
       }
       s.t_initial += seconds_since(t);
       triangulate(true);

@@ -1,6 +1,22 @@
 #include "core/distmesh/engine.h"
 
+#include "core/distmesh/refine.h"
+#include "core/distmesh/spatial_order.h"
+
 namespace meshd {
+
+int64_t Engine::refine(const CompiledProblem& finer) {
+  std::vector<Vec2> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  read_points(points);
+  read_triangles(triangles);
+  // The split triangles are dropped: CGAL's triangulation of the new points costs the CPU engine
+  // about what completing and flipping them would.
+  refine_by_midpoints(finer, points, triangles);
+  triangles.clear();
+  hilbert_order(points, static_cast<int32_t>(finer.fixed_points.size()), triangles);
+  return load_points(finer, points);
+}
 
 void Engine::move_points_until(const StepRule& rule, int first_iteration, int limit,
                                std::vector<StepResult>& steps) {

@@ -52,14 +52,12 @@ class Engine {
   // Loads `problem` like initialize, but starts from `points` (#N by 2, fixed points first):
   // the next level of a multilevel run. Returns the node count.
   virtual int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) = 0;
-  // After load_points: `triangles` (#M by 3, counter-clockwise) triangulate some of the points
-  // (a coarse level's triangles split in four, refine.h). The next full triangulation may
-  // complete and flip them instead of starting over; it falls back to starting over where they
-  // no longer form a triangulation. By default ignored: the CPU engine's CGAL triangulation
-  // costs about what a completion and the flips would on the host.
-  virtual void offer_triangulation(const std::vector<std::array<int32_t, 3>>& triangles) {
-    (void)triangles;
-  }
+  // The next level of a multilevel run (refine.h): this level's mesh split over its edges'
+  // midpoints for `finer` (kept by reference, as by initialize), renumbered along a Hilbert curve
+  // (spatial_order.h). By default on the host, through read_points, read_triangles and
+  // load_points; the GPU engine refines on the device and keeps the split triangles as the start
+  // of its next full triangulation. Returns the node count.
+  virtual int64_t refine(const CompiledProblem& finer);
   // Step 3: Delaunay triangulation (from scratch when `full`, otherwise the engine may repair
   // the previous one), the centroid filter and the bar list.
   virtual TopologyStats retriangulate(bool full) = 0;

@@ -18,7 +18,6 @@
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
-#include "core/distmesh/refine.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
@@ -272,8 +271,8 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
 }
 
 // A multilevel step: a coarse mesh relaxed at 2 h0 and split in four (refine.h). The device
-// completes the split triangles and flips them, with no rebuild, to the triangulation that CGAL
-// builds from scratch on the same points.
+// refines it to the host's points, bit for bit and in the same order, and flips its split
+// triangles, with no rebuild, to the triangulation that CGAL builds from scratch on them.
 TEST_P(GpuAgreement, RefinedLevelFlipsToTheSameTriangulation) {
   SKIP_WITHOUT_GPU();
   const CompiledProblem fine = compiled(GetParam(), 8000);
@@ -283,15 +282,17 @@ TEST_P(GpuAgreement, RefinedLevelFlipsToTheSameTriangulation) {
   CpuEngine relax(pool);
   generate_mesh(coarse, relax, nullptr, nullptr);
   std::vector<Vec2> pts;
-  Triangles coarse_triangles;
   relax.read_points(pts);
-  relax.read_triangles(coarse_triangles);
-  const Triangles refined = refine_by_midpoints(fine, pts, coarse_triangles);
   CpuEngine cpu(pool);
   GpuEngine gpu(0);
-  cpu.load_points(fine, pts);
-  gpu.load_points(fine, pts);
-  gpu.offer_triangulation(refined);
+  load_and_triangulate(coarse, pts, {&cpu, &gpu});
+  const int64_t n_cpu = cpu.refine(fine), n_gpu = gpu.refine(fine);
+  EXPECT_GT(n_cpu, 3 * static_cast<int64_t>(pts.size()));
+  ASSERT_EQ(n_gpu, n_cpu);
+  std::vector<Vec2> p_cpu, p_gpu;
+  cpu.read_points(p_cpu);
+  gpu.read_points(p_gpu);
+  EXPECT_TRUE(std::equal(p_cpu.begin(), p_cpu.end(), p_gpu.begin()));
   cpu.retriangulate(true);
   const TopologyStats tg = gpu.retriangulate(true);
   EXPECT_FALSE(tg.repair_failed) << "the device rebuilt instead of flipping";
