@@ -184,21 +184,6 @@ void append_fill(const GapFill& fill, DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>
   MESHD_CUDA_CHECK(cudaStreamSynchronize(stream));  // the uploads read host vectors
 }
 
-// Keeps the triangles with s.flag set, unlinking the others.
-void keep_flagged(DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs, GapScratch& s,
-                  DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
-  const auto m = static_cast<int64_t>(tris.size());
-  s.position.resize(m);
-  exclusive_scan(s.flag.data(), s.position.data(), m, temp, stream);
-  const int64_t kept = scan_total(s.position.data(), s.flag.data(), m, stream);
-  s.tris.resize(kept);
-  s.nbrs.resize(kept);
-  launch_compact_triangles(tris.span(), nbrs.span(), s.flag.span(), s.position.span(),
-                           s.tris.span(), s.nbrs.span(), stream);
-  tris.assign(s.tris, stream);
-  nbrs.assign(s.nbrs, stream);
-}
-
 // Drops the triangles with an open edge (complete_triangulation's erosion).
 void erode(DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs, GapScratch& s,
            DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
@@ -207,10 +192,25 @@ void erode(DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs, GapScratch& s,
   s.flag.resize(m);
   closed_triangles<<<blocks_for(m), kBlock, 0, stream>>>(nbrs.span(), s.flag.span());
   MESHD_CHECK_LAUNCH("closed_triangles");
-  keep_flagged(tris, nbrs, s, temp, stream);
+  keep_triangles(s.flag.span(), tris, nbrs, s, temp, stream);
 }
 
 }  // namespace
+
+void keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
+                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
+                    cudaStream_t stream) {
+  const auto m = static_cast<int64_t>(tris.size());
+  s.position.resize(m);
+  exclusive_scan(keep.data, s.position.data(), m, temp, stream);
+  const int64_t kept = scan_total(s.position.data(), keep.data, m, stream);
+  s.tris.resize(kept);
+  s.nbrs.resize(kept);
+  launch_compact_triangles(tris.span(), nbrs.span(), keep, s.position.span(), s.tris.span(),
+                           s.nbrs.span(), stream);
+  tris.assign(s.tris, stream);
+  nbrs.assign(s.nbrs, stream);
+}
 
 bool cut_folds(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs,
                GapScratch& s, DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
@@ -231,13 +231,13 @@ bool cut_folds(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris, DeviceBuffer<T
   s.flag.resize(m);
   off_folds<<<blocks_for(m), kBlock, 0, stream>>>(tris.span(), s.in_fold.span(), s.flag.span());
   MESHD_CHECK_LAUNCH("off_folds");
-  keep_flagged(tris, nbrs, s, temp, stream);
+  keep_triangles(s.flag.span(), tris, nbrs, s, temp, stream);
   return true;
 }
 
 bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tris,
                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                   cudaStream_t stream) {
+                   cudaStream_t stream, int max_erosions) {
   for (int erosions = 0;; ++erosions) {
     GapFill fill;
     if (fill_gaps(gap_boundary(p, nfix, tris, nbrs, s, temp, stream), p.size,
@@ -245,7 +245,7 @@ bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tr
       append_fill(fill, tris, nbrs, s, stream);
       return true;
     }
-    if (erosions == kMaxCompletionErosions) return false;
+    if (erosions == max_erosions) return false;
     erode(tris, nbrs, s, temp, stream);
   }
 }

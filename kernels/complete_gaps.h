@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "core/common/vec2.h"
+#include "core/delaunay/complete_triangulation.h"
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
 
@@ -27,10 +28,16 @@ struct GapScratch {
 // triangulation of some of the points p, fixed ones first) into a triangulation of p's convex
 // hull, as complete_triangulation does with `always_gap` = nfix: the gaps filled, the triangles
 // next to them eroded and the gaps filled again where a check fails. Not Delaunay in general:
-// the caller flips it. Returns false, with tris and nbrs eroded, when every try failed.
+// the caller flips it. Tries at most 1 + max_erosions times; returns false, with tris and nbrs
+// eroded max_erosions times, when every try failed.
 bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tris,
                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                   cudaStream_t stream);
+                   cudaStream_t stream, int max_erosions = kMaxCompletionErosions);
+
+// Keeps the triangles with keep[t] (#tris), unlinking the others.
+void keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
+                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
+                    cudaStream_t stream);
 
 // refill_folds.h's cut_folds on the device: drops from `tris` every triangle that shares a node
 // with one turned over or flat for p (with the device's filtered predicate, undecided counts as

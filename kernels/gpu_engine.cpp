@@ -268,10 +268,22 @@ struct GpuEngine::Impl {
     // with the gaps.
     const bool folded = gpu::cut_folds(p.span(), tris, nbrs, gaps, temp, stream);
     prepared = (!folded && covers_hull()) ||
-               gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
+               gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream, 0) ||
+               complete_from_domain_triangles();
     prepared_checked = false;
     completion_failed = !prepared;
     return prepared;
+  }
+  // The completion once a first try failed. Triangles outside the domain, flat ones between the
+  // hull and a straight side above all, can come to overlap as their nodes move without any of
+  // them turning over, and their walls then cross. The domain's own triangles (the centroid
+  // filter's) bound the gaps instead, as on the host's refinement; eroded where that fails too.
+  bool complete_from_domain_triangles() {
+    keep.resize(tris.size());  // scratch: the next triangulation sets it again
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
+                                problem->params.geps * problem->h0, keep.span(), stream);
+    gpu::keep_triangles(keep.span(), tris, nbrs, gaps, temp, stream);
+    return gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
   }
 
   // Step 4. The step itself needs only the sizes of a graded field; density control needs the

@@ -10,42 +10,19 @@
 #include "core/delaunay/exact_predicates.h"
 #include "core/delaunay/lawson_repair.h"
 #include "core/delaunay/triangle_neighbors.h"
+#include "tests/core/delaunay/fold_fixtures.h"
 
 namespace meshd {
 namespace {
 
-// A jittered triangular lattice: points in general position, so the Delaunay triangulation is
-// unique.
-std::vector<Vec2> jittered_lattice(int side, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
-  std::vector<Vec2> points;
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x)
-      points.push_back({x + 0.5 * (y & 1) + jitter(rng), 0.866 * y + jitter(rng)});
-  return points;
-}
+using testing::jittered_lattice;
+using testing::push_across;
 
 // Triangles as sets: each rotated to start at its smallest index, then sorted.
 std::vector<std::array<int32_t, 3>> canonical(std::vector<std::array<int32_t, 3>> triangles) {
   for (auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   std::sort(triangles.begin(), triangles.end());
   return triangles;
-}
-
-// Moves node v across the edge opposite it in one of its triangles, to the middle of the
-// triangle beyond: the triangulation now has a fold there. Returns false when v has no such
-// neighbour (it lies on the hull).
-bool push_across(const Triangulation& tri, int32_t v, std::vector<Vec2>& points) {
-  for (size_t t = 0; t < tri.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      if (tri.triangles[t][k] != v || tri.neighbors[t][k] < 0) continue;
-      const auto& u = tri.triangles[tri.neighbors[t][k]];
-      points[v] = (1.0 / 3.0) * (points[u[0]] + points[u[1]] + points[u[2]]);
-      return true;
-    }
-  }
-  return false;
 }
 
 // Checks `done` against the triangulation CGAL builds, after flipping it to Delaunay.
