@@ -202,6 +202,15 @@ void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris
                             DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
                             DeviceSpan<int32_t> undecided, TopologyCounters* counters,
                             cudaStream_t stream);
+// The points of an in-circle test: whether d lies inside the circle through a, b, c.
+struct InCircleTest {
+  Vec2 a, b, c, d;
+};
+// tests[i] = the points of the in-circle test of edge ids[i] (t * 3 + k, as flip_candidates lists
+// them), for the host's exact predicate.
+void launch_gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                   DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
+                                   DeviceSpan<InCircleTest> tests, cudaStream_t stream);
 // Votes for edges (ids t * 3 + k) the host decided to flip.
 void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
                        DeviceSpan<int32_t> vote, cudaStream_t stream);

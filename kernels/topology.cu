@@ -95,6 +95,17 @@ __global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> 
   }
 }
 
+__global__ void gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                       DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
+                                       DeviceSpan<InCircleTest> tests) {
+  const int64_t i = thread_index();
+  if (i >= ids.size) return;
+  const int32_t t = ids[i] / 3, k = ids[i] % 3, u = nbrs[t].v[k];
+  const Tri tri = tris[t];
+  const int32_t d = tris[u].v[slot_of(nbrs[u], t)];
+  tests[i] = {p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]};
+}
+
 __global__ void vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
                            DeviceSpan<int32_t> vote) {
   const int64_t i = thread_index();
@@ -297,6 +308,14 @@ void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris
   flip_candidates<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, nbrs, vote, undecided,
                                                                 counters);
   MESHD_CHECK_LAUNCH("flip_candidates");
+}
+
+void launch_gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
+                                   DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
+                                   DeviceSpan<InCircleTest> tests, cudaStream_t stream) {
+  if (ids.size == 0) return;
+  gather_in_circle_tests<<<blocks_for(ids.size), kBlock, 0, stream>>>(p, tris, nbrs, ids, tests);
+  MESHD_CHECK_LAUNCH("gather_in_circle_tests");
 }
 
 void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
