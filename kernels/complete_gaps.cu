@@ -237,7 +237,7 @@ bool cut_folds(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris, DeviceBuffer<T
 
 bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tris,
                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                   cudaStream_t stream, int max_erosions) {
+                   cudaStream_t stream) {
   for (int erosions = 0;; ++erosions) {
     GapFill fill;
     if (fill_gaps(gap_boundary(p, nfix, tris, nbrs, s, temp, stream), p.size,
@@ -245,7 +245,7 @@ bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tr
       append_fill(fill, tris, nbrs, s, stream);
       return true;
     }
-    if (erosions == max_erosions) return false;
+    if (erosions == kMaxCompletionErosions) return false;
     erode(tris, nbrs, s, temp, stream);
   }
 }

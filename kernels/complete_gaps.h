@@ -28,11 +28,11 @@ struct GapScratch {
 // triangulation of some of the points p, fixed ones first) into a triangulation of p's convex
 // hull, as complete_triangulation does with `always_gap` = nfix: the gaps filled, the triangles
 // next to them eroded and the gaps filled again where a check fails. Not Delaunay in general:
-// the caller flips it. Tries at most 1 + max_erosions times; returns false, with tris and nbrs
-// eroded max_erosions times, when every try failed.
+// the caller flips it. Returns false, with tris and nbrs eroded kMaxCompletionErosions times,
+// when every try failed.
 bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tris,
                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                   cudaStream_t stream, int max_erosions = kMaxCompletionErosions);
+                   cudaStream_t stream);
 
 // Keeps the triangles with keep[t] (#tris), unlinking the others.
 void keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
