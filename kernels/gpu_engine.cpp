@@ -139,7 +139,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<uint8_t> keep, flags;
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
-  DeviceBuffer<gpu::InCircleTest> quads;     // the undecided tests' points
+  DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   int32_t round = 0;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
@@ -562,13 +562,14 @@ struct GpuEngine::Impl {
     // along its teeth's straight sides leave hundreds of batches).
     std::vector<int32_t> ids(undecided_count);
     std::vector<gpu::InCircleTest> tests(undecided_count);
-    quads.resize(undecided_count);
+    in_circle_tests.resize(undecided_count);
     gpu::launch_gather_in_circle_tests(p.span(), tris.span(), nbrs.span(),
-                                       {undecided.data(), undecided_count}, quads.span(), stream);
+                                       {undecided.data(), undecided_count}, in_circle_tests.span(),
+                                       stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(ids.data(), undecided.data(),
                                      undecided_count * sizeof(int32_t), cudaMemcpyDeviceToHost,
                                      stream));
-    quads.download(tests.data(), stream);
+    in_circle_tests.download(tests.data(), stream);
     sync();
     std::vector<int32_t> flip_ids;
     for (int32_t i = 0; i < undecided_count; ++i) {
