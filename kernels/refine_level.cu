@@ -205,12 +205,12 @@ int64_t refine_level(const RefineRule& rule, DeviceSpan<const uint8_t> keep, Dev
   MESHD_CHECK_LAUNCH("place_midpoints");
 
   // 3. Every triangle split over its edges' midpoints; the children linked through their edges.
-  s.position.resize(m);  // children per triangle, then their offsets
+  s.count.resize(m);
   s.offset.resize(m);
-  count_children<<<blocks_for(m), kBlock, 0, stream>>>(s.midpoint.span(), s.position.span());
+  count_children<<<blocks_for(m), kBlock, 0, stream>>>(s.midpoint.span(), s.count.span());
   MESHD_CHECK_LAUNCH("count_children");
-  exclusive_scan(s.position.data(), s.offset.data(), m, temp, stream);
-  const int64_t children = scan_total(s.offset.data(), s.position.data(), m, stream);
+  exclusive_scan(s.count.data(), s.offset.data(), m, temp, stream);
+  const int64_t children = scan_total(s.offset.data(), s.count.data(), m, stream);
   bits = bits_for(total);
   s.tris.resize(children);
   s.nbrs.resize(children);

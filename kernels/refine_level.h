@@ -36,7 +36,7 @@ struct RefineRule {
 struct RefineScratch {
   DeviceBuffer<uint64_t> edge_key, edge_key_sorted;
   DeviceBuffer<uint32_t> curve_key, curve_key_sorted;
-  DeviceBuffer<int32_t> edge, edge_sorted, position, midpoint, offset, counter;
+  DeviceBuffer<int32_t> edge, edge_sorted, position, midpoint, count, offset, counter;
   DeviceBuffer<int32_t> order, curve_order, new_index;
   DeviceBuffer<uint8_t> split;
   DeviceBuffer<Vec2> mid, points;
