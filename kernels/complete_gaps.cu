@@ -6,6 +6,7 @@
 #include "core/delaunay/complete_triangulation.h"
 #include "kernels/complete_gaps.h"
 #include "kernels/cuda_check.h"
+#include "kernels/keep_triangles.h"
 #include "kernels/predicates.cuh"
 #include "kernels/scan.h"
 #include "kernels/thread_index.cuh"
@@ -192,25 +193,10 @@ void erode(DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs, GapScratch& s,
   s.flag.resize(m);
   closed_triangles<<<blocks_for(m), kBlock, 0, stream>>>(nbrs.span(), s.flag.span());
   MESHD_CHECK_LAUNCH("closed_triangles");
-  keep_triangles(s.flag.span(), tris, nbrs, s, temp, stream);
+  keep_triangles(s.flag.span(), tris, nbrs, {s.position, s.tris, s.nbrs}, temp, stream);
 }
 
 }  // namespace
-
-void keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
-                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                    cudaStream_t stream) {
-  const auto m = static_cast<int64_t>(tris.size());
-  s.position.resize(m);
-  exclusive_scan(keep.data, s.position.data(), m, temp, stream);
-  const int64_t kept = scan_total(s.position.data(), keep.data, m, stream);
-  s.tris.resize(kept);
-  s.nbrs.resize(kept);
-  launch_compact_triangles(tris.span(), nbrs.span(), keep, s.position.span(), s.tris.span(),
-                           s.nbrs.span(), stream);
-  tris.assign(s.tris, stream);
-  nbrs.assign(s.nbrs, stream);
-}
 
 bool cut_folds(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris, DeviceBuffer<Tri>& nbrs,
                GapScratch& s, DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
@@ -231,7 +217,7 @@ bool cut_folds(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris, DeviceBuffer<T
   s.flag.resize(m);
   off_folds<<<blocks_for(m), kBlock, 0, stream>>>(tris.span(), s.in_fold.span(), s.flag.span());
   MESHD_CHECK_LAUNCH("off_folds");
-  keep_triangles(s.flag.span(), tris, nbrs, s, temp, stream);
+  keep_triangles(s.flag.span(), tris, nbrs, {s.position, s.tris, s.nbrs}, temp, stream);
   return true;
 }
 

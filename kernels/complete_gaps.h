@@ -34,11 +34,6 @@ bool complete_gaps(DeviceSpan<const Vec2> p, int64_t nfix, DeviceBuffer<Tri>& tr
                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
                    cudaStream_t stream);
 
-// Keeps the triangles with keep[t] (#tris), unlinking the others.
-void keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
-                    DeviceBuffer<Tri>& nbrs, GapScratch& s, DeviceBuffer<uint8_t>& temp,
-                    cudaStream_t stream);
-
 // refill_folds.h's cut_folds on the device: drops from `tris` every triangle that shares a node
 // with one turned over or flat for p (with the device's filtered predicate, undecided counts as
 // flat), unlinking its neighbours. Returns whether there was any.

@@ -15,6 +15,7 @@
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/complete_gaps.h"
 #include "kernels/device_buffer.h"
+#include "kernels/keep_triangles.h"
 #include "kernels/launch.h"
 #include "kernels/refine_level.h"
 #include "kernels/scan.h"
@@ -231,10 +232,9 @@ struct GpuEngine::Impl {
       // keep serves as scratch: the next triangulation sets it again.
       keep.resize(tris.size());
       gpu::launch_surviving_triangles(tris.span(), flags.span(), keep.span(), stream);
-      survived = compact_alive_triangles(keep) > 0;
-      gpu::launch_renumber_vertices(tris_tmp.span(), position.span(), stream);
-      tris.assign(tris_tmp, stream);
-      nbrs.assign(nbrs_tmp, stream);
+      survived = gpu::keep_triangles(keep.span(), tris, nbrs, {count, tris_tmp, nbrs_tmp}, temp,
+                                     stream) > 0;
+      gpu::launch_renumber_vertices(tris.span(), position.span(), stream);
     }
     gpu::launch_compact_points(p.span(), flags.span(), position.span(), p_next.span(), stream);
     std::swap(p, p_next);
@@ -285,7 +285,7 @@ struct GpuEngine::Impl {
     keep.resize(tris.size());  // scratch: the next triangulation sets it again
     gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
                                 problem->params.geps * problem->h0, keep.span(), stream);
-    gpu::keep_triangles(keep.span(), tris, nbrs, gaps, temp, stream);
+    gpu::keep_triangles(keep.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream);
     return gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
   }
 
@@ -478,20 +478,8 @@ struct GpuEngine::Impl {
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
     if (c.dropped > 0) {
-      position.resize(m);
-      gpu::exclusive_scan(flags.data(), position.data(), m, temp, stream);
-      const int64_t alive = m - c.dropped;
-      tris_tmp.resize(alive);
-      nbrs_tmp.resize(alive);
-      gpu::launch_compact_triangles(tris.span(), nbrs.span(), flags.span(), position.span(),
-                                    tris_tmp.span(), nbrs_tmp.span(), stream);
-      // Copy back rather than swap, so that tris keeps the largest capacity (the arena).
-      tris.resize(alive);
-      nbrs.resize(alive);
-      MESHD_CUDA_CHECK(cudaMemcpyAsync(tris.data(), tris_tmp.data(), alive * sizeof(Tri),
-                                       cudaMemcpyDeviceToDevice, stream));
-      MESHD_CUDA_CHECK(cudaMemcpyAsync(nbrs.data(), nbrs_tmp.data(), alive * sizeof(Tri),
-                                       cudaMemcpyDeviceToDevice, stream));
+      const int64_t alive = gpu::keep_triangles(flags.span(), tris, nbrs,
+                                                {position, tris_tmp, nbrs_tmp}, temp, stream);
       flipped_round.resize(alive);
       MESHD_CUDA_CHECK(
           cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
