@@ -6,15 +6,18 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "core/common/error.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
 #include "core/distmesh/initial_triangulation.h"
+#include "core/distmesh/optimize_worst.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/complete_gaps.h"
 #include "kernels/device_buffer.h"
+#include "kernels/finish_mesh.h"
 #include "kernels/keep_triangles.h"
 #include "kernels/launch.h"
 #include "kernels/refine_level.h"
@@ -158,6 +161,10 @@ struct GpuEngine::Impl {
   DeviceBuffer<uint8_t> temp;
   gpu::RefineScratch refine_scratch;
   gpu::GapScratch gaps;
+  gpu::FinishScratch finish;
+  // The last read_mesh's copy of this job was tidy: its triangles (kept in finish) are the
+  // result's.
+  bool copy_tidy = false;
   PinnedValue<gpu::StepBatch> h_batch;
   PinnedValue<gpu::TopologyCounters> h_counters;
 
@@ -166,6 +173,7 @@ struct GpuEngine::Impl {
 
   void load_problem(const CompiledProblem& prob) {
     problem = &prob;
+    copy_tidy = false;
     geometry_code.upload(prob.geometry.code.data(), prob.geometry.code.size(), stream);
     geometry_params.upload(prob.geometry.params.data(), prob.geometry.params.size(), stream);
     size_code.upload(prob.size.shapes.code.data(), prob.size.shapes.code.size(), stream);
@@ -860,6 +868,36 @@ void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {
   static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
   s.tris_tmp.download(reinterpret_cast<Tri*>(triangles.data()), s.stream);
   s.sync();
+}
+
+void GpuEngine::read_mesh(MeshCopy& copy) {
+  Impl& s = *impl_;
+  s.use_device();
+  read_points(copy.points);
+  read_triangles(
+      copy.triangles);  // leaves the kept triangles and their links in tris_tmp, nbrs_tmp
+  s.finish.tris.assign(s.tris_tmp, s.stream);
+  gpu::MeshFacts facts = gpu::find_mesh_facts(s.p.span(), s.tris_tmp.span(), s.nbrs_tmp.span(),
+                                              kOptimizeBelowQuality, s.finish, s.temp, s.stream);
+  copy.boundary = std::move(facts.boundary);
+  copy.below = std::move(facts.below);
+  copy.below_known = true;
+  copy.tidy = s.copy_tidy = facts.tidy;
+}
+
+QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {
+  Impl& s = *impl_;
+  // An untidy copy was renumbered on the host: its triangles are no longer the device's.
+  if (!s.copy_tidy || static_cast<int64_t>(mesh.points.size()) != s.n ||
+      mesh.triangles.size() != s.finish.tris.size())
+    return Engine::measure_quality(mesh, moved);
+  s.use_device();
+  gpu::DeviceSpan<const Vec2> points = s.p.span();
+  if (moved) {
+    s.p_next.upload(mesh.points.data(), mesh.points.size(), s.stream);
+    points = s.p_next.span();
+  }
+  return gpu::measure_quality(points, s.finish.tris.span(), s.finish, s.stream);
 }
 
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }

@@ -76,6 +76,8 @@ class GpuEngine final : public Engine {
   int64_t node_count() const override;
   void read_points(std::vector<Vec2>& points) override;
   void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override;
+  void read_mesh(MeshCopy& copy) override;
+  QualityStats measure_quality(const Mesh& mesh, bool moved) override;
 
   int device() const;
   // cudaMalloc calls so far in this process (all engines), to check the arena.

@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/boundary.h"
 
 namespace meshd {
 
-Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& points,
-                   const std::vector<std::array<int32_t, 3>>& triangles,
-                   const std::vector<int32_t>& boundary) {
-  Mesh mesh;
+namespace {
+
+// Drops the points no triangle uses and turns clockwise triangles over; returns the boundary
+// half-edges' ids in the new triangles.
+std::vector<int32_t> renumber_and_orient(Mesh& mesh, const std::vector<Vec2>& points,
+                                         const std::vector<std::array<int32_t, 3>>& triangles,
+                                         const std::vector<int32_t>& boundary) {
   std::vector<int32_t> new_index(points.size(), -1);
   for (const auto& t : triangles)
     for (int32_t v : t) new_index[v] = 0;
@@ -43,7 +47,23 @@ Mesh assemble_mesh(const CompiledProblem& problem, const std::vector<Vec2>& poin
       if (std::binary_search(turned.begin(), turned.end(), id / 3)) id = 3 * (id / 3) + 2 - id % 3;
     std::sort(ids.begin(), ids.end());
   }
-  mesh.boundary_edges = half_edge_ends(mesh.triangles, ids);
+  return ids;
+}
+
+}  // namespace
+
+Mesh assemble_mesh(const CompiledProblem& problem, std::vector<Vec2> points,
+                   std::vector<std::array<int32_t, 3>> triangles,
+                   const std::vector<int32_t>& boundary, bool tidy) {
+  Mesh mesh;
+  if (tidy) {
+    mesh.points = std::move(points);
+    mesh.triangles = std::move(triangles);
+    mesh.boundary_edges = half_edge_ends(mesh.triangles, boundary);
+  } else {
+    const std::vector<int32_t> ids = renumber_and_orient(mesh, points, triangles, boundary);
+    mesh.boundary_edges = half_edge_ends(mesh.triangles, ids);
+  }
   // The primitive that wins the min / max at an edge's midpoint is the boundary it lies on.
   std::map<std::string, int32_t> group_of_name;
   std::vector<int32_t> group_of_primitive(problem.geometry.primitives.size(), -1);

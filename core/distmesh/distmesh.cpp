@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/common/error.h"
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
-#include "core/mesh/boundary.h"
 
 namespace meshd {
 namespace {
@@ -81,8 +81,8 @@ class Loop {
       const int coarser_levels = static_cast<int>(levels.size()) - 1;
       const bool coarser = static_cast<int>(level) < coarser_levels;
       const int budget = std::max(
-          1, coarser ? std::min(left, current_->params.max_iterations / (2 * coarser_levels))
-                     : left);
+          1,
+          coarser ? std::min(left, current_->params.max_iterations / (2 * coarser_levels)) : left);
       s.converged = relax(budget, true, s.iterations, coarser);
       s.equivalent_iterations +=
           (s.iterations - before) * static_cast<double>(engine_.node_count());
@@ -114,17 +114,19 @@ class Loop {
     const auto t_finish = Clock::now();
     triangulate(false);
     if (dropped_since_full_ > 0) triangulate(true);
-    engine_.read_points(points_);
-    engine_.read_triangles(triangles_);
     // The boundary depends on the triangles alone, which the optimisation keeps: found once.
-    const std::vector<int32_t> boundary = boundary_half_edges(triangles_);
+    MeshCopy copy;
+    engine_.read_mesh(copy);
     if (problem_.params.cleanup) {
       const auto t = Clock::now();
-      s.optimized_moves = optimize_worst_elements(problem_, points_, triangles_, boundary);
+      s.optimized_moves =
+          optimize_worst_elements(problem_, copy.points, copy.triangles, copy.boundary,
+                                  copy.below_known ? &copy.below : nullptr);
       s.t_cleanup += seconds_since(t);
     }
-    result.mesh = assemble_mesh(problem_, points_, triangles_, boundary);
-    result.quality = summarize_quality(result.mesh);
+    result.mesh = assemble_mesh(problem_, std::move(copy.points), std::move(copy.triangles),
+                                copy.boundary, copy.tidy);
+    result.quality = engine_.measure_quality(result.mesh, s.optimized_moves > 0);
     s.t_finish = seconds_since(t_finish);
     s.t_total = seconds_since(t0);
     result.stats = s;

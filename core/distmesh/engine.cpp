@@ -2,6 +2,7 @@
 
 #include "core/distmesh/refine.h"
 #include "core/distmesh/spatial_order.h"
+#include "core/mesh/boundary.h"
 
 namespace meshd {
 
@@ -16,6 +17,19 @@ int64_t Engine::refine(const CompiledProblem& finer) {
   triangles.clear();
   hilbert_order(points, static_cast<int32_t>(finer.fixed_points.size()), triangles);
   return load_points(finer, points);
+}
+
+void Engine::read_mesh(MeshCopy& copy) {
+  read_points(copy.points);
+  read_triangles(copy.triangles);
+  copy.boundary = boundary_half_edges(copy.triangles);
+  copy.below_known = false;
+  copy.below.clear();
+  copy.tidy = false;
+}
+
+QualityStats Engine::measure_quality(const Mesh& mesh, bool /*moved*/) {
+  return summarize_quality(mesh);
 }
 
 void Engine::move_points_until(const StepRule& rule, int first_iteration, int limit,

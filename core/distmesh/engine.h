@@ -11,6 +11,8 @@
 #include "core/common/vec2.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/step_rule.cuh"
+#include "core/mesh/mesh.h"
+#include "core/mesh/quality.h"
 
 namespace meshd {
 
@@ -31,11 +33,25 @@ inline double iteration_bytes(int64_t nodes, int64_t bars, bool graded) {
 struct TopologyStats {
   int64_t triangles = 0;  // kept inside the domain
   int64_t bars = 0;
-  int64_t flips = 0;           // edge flips of a repair
-  bool full = true;            // a full triangulation rather than a repair
-  bool repair_failed = false;  // a repair was asked for, but the engine rebuilt from scratch
-  int64_t dropped = 0;         // turned-over boundary slivers a repair removed
+  int64_t flips = 0;            // edge flips of a repair
+  bool full = true;             // a full triangulation rather than a repair
+  bool repair_failed = false;   // a repair was asked for, but the engine rebuilt from scratch
+  int64_t dropped = 0;          // turned-over boundary slivers a repair removed
   bool folds_refilled = false;  // a repair cut out turned-over triangles and filled the hole
+};
+
+// What the finish (distmesh.cpp) reads from an engine once the relaxation is over.
+struct MeshCopy {
+  std::vector<Vec2> points;                       // #N, fixed first
+  std::vector<std::array<int32_t, 3>> triangles;  // #M, the kept triangles
+  std::vector<int32_t> boundary;  // boundary_half_edges(triangles) (core/mesh/boundary.h)
+  // When `below_known`: the triangles, increasing, that the worst-element optimisation starts
+  // from (optimize_worst.h), so that it need not measure all of them.
+  bool below_known = false;
+  std::vector<int32_t> below;
+  // Every point is a corner of a triangle and every triangle turns counter-clockwise: assemble_mesh
+  // has nothing to renumber or turn.
+  bool tidy = false;
 };
 
 // max_removed for a removal that may take any number of nodes.
@@ -86,6 +102,15 @@ class Engine {
   // the points and triangles (cleanup.cpp); the GPU engine finds them where they are.
   // Nothing goes when more than `max_removed` would.
   virtual int64_t remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed);
+
+  // The finish's copy of the current mesh. By default read_points, read_triangles and
+  // boundary_half_edges on the host; the GPU engine finds the boundary from its triangles' links,
+  // and the triangles under the optimisation's threshold, on the device.
+  virtual void read_mesh(MeshCopy& copy);
+  // The quality of `mesh`, which assemble_mesh made from the last read_mesh's copy after the
+  // optimisation moved some of its points (`moved`). By default summarize_quality on the host; the
+  // GPU engine measures a tidy copy's triangles where they are.
+  virtual QualityStats measure_quality(const Mesh& mesh, bool moved);
 
   virtual int64_t node_count() const = 0;
   virtual void read_points(std::vector<Vec2>& points) = 0;

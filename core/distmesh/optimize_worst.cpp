@@ -52,12 +52,14 @@ class Optimizer {
       on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
   }
 
-  int64_t run() {
-    int64_t moves = snap_to_boundary();
+  int64_t run(const std::vector<int32_t>* below) {
     // good[t]: t's quality was at least the threshold when last measured and none of its nodes
     // has moved since, so measuring it again would give the same value. Each pass then measures
     // only the few triangles near moved nodes instead of all of them, with the same result.
-    std::vector<char> good(t_.size(), 0);
+    std::vector<char> good(t_.size(), below != nullptr ? 1 : 0);
+    if (below != nullptr)
+      for (int32_t t : *below) good[t] = 0;
+    int64_t moves = snap_to_boundary(good);
     for (int pass = 0; pass < kPasses; ++pass) {
       int64_t pass_moves = 0;
       for (size_t t = 0; t < t_.size(); ++t) {
@@ -69,7 +71,7 @@ class Optimizer {
         for (int32_t v : t_[t]) {
           if (v < nfix_ || !optimize_node(v)) continue;
           ++pass_moves;
-          for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k) good[stars_.tri[k]] = 0;
+          mark_star(v, good);
         }
       }
       moves += pass_moves;
@@ -84,7 +86,7 @@ class Optimizer {
   // too far apart for one node at full length and too close for two: next to a concave corner
   // the Delaunay edge across the corner is dropped with its triangle, and the node, pushed
   // inward by both, settles up to half an edge inside.
-  int64_t snap_to_boundary() {
+  int64_t snap_to_boundary(std::vector<char>& good) {
     int64_t moves = 0;
     for (int32_t v = nfix_; v < static_cast<int32_t>(p_.size()); ++v) {
       if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
@@ -95,17 +97,20 @@ class Optimizer {
       const double before = star_quality(v, p_[v]), after = star_quality(v, x);
       if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
       p_[v] = x;
+      mark_star(v, good);
       ++moves;
     }
     return moves;
   }
 
+  // v moved: the triangles around it must be measured again.
+  void mark_star(int32_t v, std::vector<char>& good) const {
+    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k) good[stars_.tri[k]] = 0;
+  }
+
   double quality(int32_t t) const {
     const auto& tri = t_[t];
-    const Vec2 a = p_[tri[0]], b = p_[tri[1]], c = p_[tri[2]];
-    // Inverted or flat triangles rank below every valid one.
-    if (cross(b - a, c - a) <= 0.0) return -1.0;
-    return radius_ratio(a, b, c);
+    return oriented_radius_ratio(p_[tri[0]], p_[tri[1]], p_[tri[2]]);
   }
 
   // Worst quality in v's star with v at position x.
@@ -191,8 +196,9 @@ class Optimizer {
 
 int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
                                 const std::vector<std::array<int32_t, 3>>& triangles,
-                                const std::vector<int32_t>& boundary) {
-  return Optimizer(problem, points, triangles, boundary).run();
+                                const std::vector<int32_t>& boundary,
+                                const std::vector<int32_t>* below) {
+  return Optimizer(problem, points, triangles, boundary).run(below);
 }
 
 }  // namespace meshd

@@ -24,9 +24,13 @@ constexpr double kOptimizeBelowQuality = 0.8;
 
 // points: #N by 2, fixed nodes first (never moved); triangles: #M by 3, counter-clockwise;
 // boundary: boundary_half_edges(triangles) (core/mesh/boundary.h), whose ends move along the
-// boundary. Returns the number of node moves made.
+// boundary; below: null, or the triangles, increasing, that are turned over or under
+// kOptimizeBelowQuality (oriented_radius_ratio, radius_ratio.cuh) as the points stand, when the
+// caller knows them: then only those and the triangles around moved nodes are measured, with the
+// same result. Returns the number of node moves made.
 int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
                                 const std::vector<std::array<int32_t, 3>>& triangles,
-                                const std::vector<int32_t>& boundary);
+                                const std::vector<int32_t>& boundary,
+                                const std::vector<int32_t>* below = nullptr);
 
 }  // namespace meshd

@@ -8,14 +8,6 @@
 
 namespace meshd {
 
-double min_angle_deg(Vec2 a, Vec2 b, Vec2 c) {
-  auto angle = [](Vec2 apex, Vec2 u, Vec2 v) {
-    return std::atan2(std::fabs(cross(u - apex, v - apex)), dot(u - apex, v - apex));
-  };
-  const double m = std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
-  return m * 180.0 / M_PI;
-}
-
 std::vector<double> triangle_quality(const Mesh& mesh) {
   std::vector<double> q(mesh.triangles.size());
   for (size_t i = 0; i < mesh.triangles.size(); ++i) {

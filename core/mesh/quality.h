@@ -7,12 +7,10 @@
 #include <vector>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/min_angle.cuh"
 #include "core/mesh/radius_ratio.cuh"
 
 namespace meshd {
-
-// The smallest interior angle, in degrees.
-double min_angle_deg(Vec2 a, Vec2 b, Vec2 c);
 
 // Per-triangle radius ratio, #M.
 std::vector<double> triangle_quality(const Mesh& mesh);

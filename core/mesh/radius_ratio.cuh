@@ -21,4 +21,11 @@ MESHD_HD inline double radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
   return radius_ratio_of_sides(norm(b - c), norm(c - a), norm(a - b));
 }
 
+// The same for the triangle (a, b, c) taken in this order, but -1 when it is flat or turns
+// clockwise: such triangles rank below every valid one (the worst-element optimisation).
+MESHD_HD inline double oriented_radius_ratio(Vec2 a, Vec2 b, Vec2 c) {
+  if (cross(b - a, c - a) <= 0.0) return -1.0;
+  return radius_ratio(a, b, c);
+}
+
 }  // namespace meshd

@@ -32,5 +32,22 @@ TEST(AssembleMesh, TurnedTrianglesKeepTheirBoundaryInTheResultsOrder) {
   ASSERT_EQ(mesh.boundary_names, (std::vector<std::string>{"outer"}));
 }
 
+// A copy the engine vouches for as tidy moves in as it is, with the boundary and tags that the
+// full assembly gives.
+TEST(AssembleMesh, ATidyCopyGivesTheSameMeshAsTheFullAssembly) {
+  const CompiledProblem c = compile_problem(testing::benchmark_problem("G2", 0.1));
+  const std::vector<Vec2> points = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, 0}};
+  const std::vector<std::array<int32_t, 3>> triangles = {
+      {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const std::vector<int32_t> boundary = boundary_half_edges(triangles);
+  const Mesh full = assemble_mesh(c, points, triangles, boundary, false);
+  const Mesh tidy = assemble_mesh(c, points, triangles, boundary, true);
+  EXPECT_EQ(tidy.points.size(), full.points.size());
+  EXPECT_EQ(tidy.triangles, full.triangles);
+  EXPECT_EQ(tidy.boundary_edges, full.boundary_edges);
+  EXPECT_EQ(tidy.boundary_tags, full.boundary_tags);
+  EXPECT_EQ(tidy.boundary_names, full.boundary_names);
+}
+
 }  // namespace
 }  // namespace meshd

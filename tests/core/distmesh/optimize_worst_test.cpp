@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include "core/common/thread_pool.h"
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/cpu_engine.h"
 #include "core/mesh/boundary.h"
 #include "core/mesh/validity.h"
+#include "tests/core/distmesh/benchmark_geometries.h"
 
 namespace meshd {
 namespace {
@@ -36,6 +39,71 @@ TEST(OptimizeWorst, SnappingANodeOntoTheBoundaryNeverFlattensItsTriangle) {
     const Mesh mesh = assemble_mesh(problem, points, triangles, boundary_half_edges(triangles));
     const ValidityReport report = check_validity(mesh);
     EXPECT_TRUE(report.valid()) << "v at s = " << s << ": " << report.problems.front();
+  }
+}
+
+// A mesh early in its relaxation, with many triangles under the threshold.
+MeshCopy early_mesh(const std::string& id) {
+  const CompiledProblem problem = compile_problem(testing::benchmark_problem(id, 0.05));
+  ThreadPool pool(0);
+  CpuEngine engine(pool);
+  engine.initialize(problem);
+  engine.retriangulate(true);
+  for (int k = 0; k < 5; ++k) engine.move_points();
+  engine.retriangulate(false);
+  MeshCopy copy;
+  engine.read_mesh(copy);
+  return copy;
+}
+
+// The GPU engine hands the optimisation the triangles under the threshold, found on the device:
+// starting from them must give the bits that measuring every triangle gives.
+TEST(OptimizeWorst, StartingFromTheTrianglesBelowTheThresholdMovesTheSameNodes) {
+  for (const std::string id : {"G1", "G2", "G5"}) {
+    const CompiledProblem problem = compile_problem(testing::benchmark_problem(id, 0.05));
+    const MeshCopy copy = early_mesh(id);
+    std::vector<int32_t> below;
+    for (size_t t = 0; t < copy.triangles.size(); ++t) {
+      const auto& tri = copy.triangles[t];
+      if (oriented_radius_ratio(copy.points[tri[0]], copy.points[tri[1]], copy.points[tri[2]]) <
+          kOptimizeBelowQuality)
+        below.push_back(static_cast<int32_t>(t));
+    }
+    ASSERT_GT(below.size(), 10u) << id;
+    std::vector<Vec2> measured = copy.points, seeded = copy.points;
+    const int64_t a =
+        optimize_worst_elements(problem, measured, copy.triangles, copy.boundary, nullptr);
+    const int64_t b =
+        optimize_worst_elements(problem, seeded, copy.triangles, copy.boundary, &below);
+    EXPECT_GT(a, 0) << id;
+    EXPECT_EQ(a, b) << id;
+    for (size_t i = 0; i < measured.size(); ++i) {
+      ASSERT_EQ(measured[i].x, seeded[i].x) << id << ", node " << i;
+      ASSERT_EQ(measured[i].y, seeded[i].y) << id << ", node " << i;
+    }
+  }
+}
+
+// A triangle above the threshold until the snap puts its sagging corner onto the boundary, where
+// it falls under it (q 0.91, then 0.74): it must be optimised as if every triangle were measured.
+TEST(OptimizeWorst, StartingFromTheTrianglesBelowAlsoMeasuresAroundSnappedNodes) {
+  Problem p;
+  p.h0 = 1.0;
+  p.auto_corners = false;
+  p.geometry = Shape{Polygon{{{0, 0}, {2, 0}, {2, 10}, {0, 10}}}, "", ""};
+  const CompiledProblem problem = compile_problem(p);
+  const std::vector<std::array<int32_t, 3>> triangles = {{0, 1, 2}};
+  const std::vector<Vec2> start = {{0, 0}, {2, 0}, {0.7, 1.2}};
+  ASSERT_GE(oriented_radius_ratio(start[0], start[1], start[2]), kOptimizeBelowQuality);
+  const std::vector<int32_t> boundary = boundary_half_edges(triangles), below;
+  std::vector<Vec2> measured = start, seeded = start;
+  const int64_t a = optimize_worst_elements(problem, measured, triangles, boundary, nullptr);
+  const int64_t b = optimize_worst_elements(problem, seeded, triangles, boundary, &below);
+  EXPECT_GT(a, 1);  // the snap, then the optimisation
+  EXPECT_EQ(a, b);
+  for (size_t i = 0; i < start.size(); ++i) {
+    EXPECT_EQ(measured[i].x, seeded[i].x) << "node " << i;
+    EXPECT_EQ(measured[i].y, seeded[i].y) << "node " << i;
   }
 }
 
