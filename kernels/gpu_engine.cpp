@@ -11,7 +11,6 @@
 #include "core/common/error.h"
 #include "core/delaunay/delaunay.h"
 #include "core/delaunay/exact_predicates.h"
-#include "core/distmesh/initial_triangulation.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/sdf_eval.cuh"
@@ -19,6 +18,7 @@
 #include "kernels/device_buffer.h"
 #include "kernels/finish_mesh.h"
 #include "kernels/keep_triangles.h"
+#include "kernels/lattice_triangulation.h"
 #include "kernels/launch.h"
 #include "kernels/refine_level.h"
 #include "kernels/scan.h"
@@ -161,6 +161,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<uint8_t> temp;
   gpu::RefineScratch refine_scratch;
   gpu::GapScratch gaps;
+  gpu::LatticeScratch lattice;
   gpu::FinishScratch finish;
   // The last read_mesh's copy of this job was tidy: its triangles (kept in finish) are the
   // result's.
@@ -404,18 +405,12 @@ struct GpuEngine::Impl {
                                      flipped_round.size() * sizeof(int32_t), stream));
   }
 
-  // Uploads the initial triangulation (initial_triangulation.h) for the first retriangulate.
-  void prepare(const InitialGrid& grid, int64_t total) {
-    std::vector<uint8_t> kept(total);
-    flags.download(kept.data(), stream);
-    sync();
-    const Triangulation t = initial_triangulation(grid, kept, problem->fixed_points);
-    if (t.triangles.empty()) return;
-    tris.upload(reinterpret_cast<const Tri*>(t.triangles.data()), t.triangles.size(), stream);
-    nbrs.upload(reinterpret_cast<const Tri*>(t.neighbors.data()), t.neighbors.size(), stream);
-    prepared = true;
-    prepared_checked = true;
-    sync();  // t is a host vector
+  // The initial triangulation (lattice_triangulation.h) for the first retriangulate; without
+  // it (its completion failed) the first one is built from scratch.
+  void prepare(const InitialGrid& grid) {
+    prepared = gpu::lattice_triangulation(grid, flags.span(), position.span(), nfix, p.span(), tris,
+                                          nbrs, lattice, gaps, temp, stream);
+    prepared_checked = prepared;
   }
 
   // Flips the prepared triangulation to Delaunay. Returns the flips, or -1 when it cannot (a
@@ -695,7 +690,7 @@ int64_t GpuEngine::initialize(const CompiledProblem& problem) {
                                      cudaMemcpyDeviceToDevice, s.stream));
   gpu::launch_scatter_grid(grid, s.flags.span(), s.position.span(), s.p.span(), s.nfix, s.stream);
   s.reset_node_state();
-  s.prepare(grid, total);
+  s.prepare(grid);
   return s.n;
 }
 

@@ -6,58 +6,14 @@
 #include <utility>
 
 #include "core/delaunay/complete_triangulation.h"
+#include "core/distmesh/lattice_triangles.cuh"
 
 namespace meshd {
 namespace {
 
-// Lattice triangle s (0 or 1) of column i between rows r and r + 1, as grid indices, counter-
-// clockwise. Even rows are not shifted, odd rows are shifted right by half a column.
-std::array<int64_t, 3> lattice_triangle(const InitialGrid& g, int64_t r, int64_t i, int s) {
-  const int64_t a = r * g.nx + i, b = (r + 1) * g.nx + i;  // a: row r, b: row r + 1
-  if ((r & 1) == 0) {
-    return s == 0 ? std::array<int64_t, 3>{a, a + 1, b} : std::array<int64_t, 3>{a + 1, b + 1, b};
-  }
-  return s == 0 ? std::array<int64_t, 3>{a, b + 1, b} : std::array<int64_t, 3>{a, a + 1, b + 1};
+bool all_kept(const LatticeTriangle& t, const std::vector<uint8_t>& kept) {
+  return kept[t.v[0]] && kept[t.v[1]] && kept[t.v[2]];
 }
-
-bool all_kept(const std::array<int64_t, 3>& t, const std::vector<uint8_t>& kept) {
-  return kept[t[0]] && kept[t[1]] && kept[t[2]];
-}
-
-int64_t lattice_id(const InitialGrid& g, int64_t r, int64_t i, int s) {
-  return (r * (g.nx - 1) + i) * 2 + s;
-}
-
-// Calls f(r, i, s) for each lattice triangle whose closure holds q (a few cells around it).
-template <typename F>
-void for_lattice_triangles_at(const InitialGrid& g, Vec2 q, F f) {
-  const double row = std::floor((q.y - g.origin.y) / g.dy);
-  const double col = std::floor((q.x - g.origin.x) / g.dx);
-  if (!(row > -2.0 && row < static_cast<double>(g.ny) + 1.0 && col > -3.0 &&
-        col < static_cast<double>(g.nx) + 2.0))
-    return;
-  const auto r0 = static_cast<int64_t>(row), i0 = static_cast<int64_t>(col);
-  for (int64_t r = r0 - 1; r <= r0 + 1; ++r) {
-    if (r < 0 || r > g.ny - 2) continue;
-    for (int64_t i = i0 - 2; i <= i0 + 1; ++i) {
-      if (i < 0 || i > g.nx - 2) continue;
-      for (int s = 0; s < 2; ++s) {
-        const auto t = lattice_triangle(g, r, i, s);
-        const Vec2 a = initial_grid_point(g, t[0]), b = initial_grid_point(g, t[1]),
-                   c = initial_grid_point(g, t[2]);
-        if (cross(b - a, q - a) >= 0.0 && cross(c - b, q - b) >= 0.0 && cross(a - c, q - c) >= 0.0)
-          f(r, i, s);
-      }
-    }
-  }
-}
-
-// Lattice triangle s of column i between rows r and r + 1 borders, across the edge opposite its
-// corner k, triangle (r + dr, i + di, s') of kNeighbor[r & 1][s][k] = {dr, di, s'}: the lattice
-// is the same in every cell, so its neighbours are known without matching edges.
-constexpr int kNeighbor[2][2][3][3] = {
-    {{{0, 0, 1}, {0, -1, 1}, {-1, 0, 0}}, {{1, 0, 1}, {0, 0, 0}, {0, 1, 0}}},   // even rows
-    {{{1, 0, 0}, {0, -1, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 0}, {-1, 0, 1}}}};  // odd rows
 
 }  // namespace
 
@@ -99,7 +55,7 @@ Triangulation initial_triangulation(const InitialGrid& grid, const std::vector<u
           continue;
         }
         id = static_cast<int32_t>(u.triangles.size());
-        u.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+        u.triangles.push_back({index[t.v[0]], index[t.v[1]], index[t.v[2]]});
       }
     }
   }
@@ -109,10 +65,8 @@ Triangulation initial_triangulation(const InitialGrid& grid, const std::vector<u
         if (in_u[lattice_id(grid, r, i, s)] < 0) continue;
         std::array<int32_t, 3> nb{-1, -1, -1};
         for (int k = 0; k < 3; ++k) {
-          const int* d = kNeighbor[r & 1][s][k];
-          const int64_t nr = r + d[0], ni = i + d[1];
-          if (nr >= 0 && nr + 1 < grid.ny && ni >= 0 && ni + 1 < grid.nx)
-            nb[k] = in_u[lattice_id(grid, nr, ni, d[2])];
+          const int64_t across = lattice_neighbor(grid, r, i, s, k);
+          if (across >= 0) nb[k] = in_u[across];
         }
         u.neighbors.push_back(nb);
       }
