@@ -515,6 +515,7 @@ struct GpuEngine::Impl {
         // that none of them flips and nothing else does, the triangulation is Delaunay.
         if (again.candidates == 0 && to_flip == 0) return again.flips;
         flip_and_relink();
+        unsettle();  // the host's flips may make new candidates, however few the round found
       }
     }
     return -1;
@@ -527,22 +528,25 @@ struct GpuEngine::Impl {
   }
   void launch_candidates() {
     ++round;
-    const int64_t mt = static_cast<int64_t>(tris.size());
-    MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
     // candidates and undecided count per round; flips add up over the repair.
-    MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->candidates, 0, 2 * sizeof(int32_t), stream));
+    gpu::launch_open_flip_round(vote.span(), counters.data(), stream);
     gpu::launch_flip_candidates(p.span(), tris.span(), nbrs.span(), vote.span(), undecided.span(),
                                 counters.data(), stream);
   }
+  // A round that the host drives counts afresh, whatever the batch before it settled on.
   gpu::TopologyCounters candidates_round() {
+    unsettle();
     launch_candidates();
     return read_counters();
+  }
+  void unsettle() {
+    MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->checked, 0, 2 * sizeof(int32_t), stream));
   }
   void flip_and_relink() {
     gpu::launch_flip(tris.span(), nbrs.span(), vote.span(), flipped_round.span(), partner.span(),
                      round, counters.data(), stream);
     gpu::launch_relink(tris.span(), nbrs.span(), flipped_round.span(), partner.span(), round,
-                       stream);
+                       counters.data(), stream);
   }
 
   // The exact fallback: in-circle tests the filter left undecided, on the host with CGAL's exact

@@ -175,6 +175,11 @@ struct TopologyCounters {
   int32_t candidates;  // edges failing the in-circle test this round
   int32_t undecided;   // in-circle tests the filter could not decide this round
   int32_t flips;       // flips done so far
+  // Within a batch of flip rounds: a round has counted its candidates (checked), and one found
+  // none (settled): nothing flips any more, so the batch's later rounds would find the same and
+  // return at once instead.
+  int32_t checked;
+  int32_t settled;
 };
 
 // alive[t] = 0 for inverted or flat expendable triangles (outside, or boundary slivers: see
@@ -195,9 +200,13 @@ void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> 
                               DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out,
                               cudaStream_t stream);
 
-// One round of parallel Lawson flips, in three launches: candidates vote for their two
-// triangles (the smallest edge id wins both, so every round makes progress), winners flip, and
-// flipped triangles re-link their outer neighbours. Undecided tests are listed for the host.
+// One round of parallel Lawson flips, in four launches: the round opens (the votes reset, the
+// round's counts zeroed, or the batch settled when the last round found no candidate),
+// candidates vote for their two triangles (the smallest edge id wins both, so every round makes
+// progress), winners flip, and flipped triangles re-link their outer neighbours. Undecided
+// tests are listed for the host. Every launch of a settled batch returns at once.
+void launch_open_flip_round(DeviceSpan<int32_t> vote, TopologyCounters* counters,
+                            cudaStream_t stream);
 void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                             DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
                             DeviceSpan<int32_t> undecided, TopologyCounters* counters,
@@ -219,7 +228,7 @@ void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const in
                  TopologyCounters* counters, cudaStream_t stream);
 void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
                    DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                   int32_t round, cudaStream_t stream);
+                   int32_t round, const TopologyCounters* counters, cudaStream_t stream);
 
 // The boundary of the triangulation (edges with no neighbour): next[a] = b for each such edge
 // a -> b, counted in counters->candidates. Then hull_turns counts in counters->fatal the boundary

@@ -71,11 +71,28 @@ __global__ void renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t
   for (int k = 0; k < 3; ++k) tris[t].v[k] = new_index[tris[t].v[k]];
 }
 
+__global__ void open_flip_round(TopologyCounters* counters) {
+  if (counters->settled) return;
+  if (counters->checked && counters->candidates == 0) {
+    counters->settled = 1;
+    return;
+  }
+  counters->candidates = 0;
+  counters->undecided = 0;
+  counters->checked = 1;
+}
+
+__global__ void reset_votes(DeviceSpan<int32_t> vote, const TopologyCounters* counters) {
+  const int64_t t = thread_index();
+  if (t >= vote.size || counters->settled) return;
+  vote[t] = 0x7f7f7f7f;
+}
+
 __global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                 DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
                                 DeviceSpan<int32_t> undecided, TopologyCounters* counters) {
   const int64_t t = thread_index();
-  if (t >= tris.size) return;
+  if (t >= tris.size || counters->settled) return;
   for (int k = 0; k < 3; ++k) {
     const int32_t u = nbrs[t].v[k];
     if (u <= t) continue;  // each interior edge once, from its lower triangle
@@ -121,7 +138,7 @@ __global__ void flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<cons
                      DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
                      TopologyCounters* counters) {
   const int64_t t64 = thread_index();
-  if (t64 >= tris.size) return;
+  if (t64 >= tris.size || counters->settled) return;
   const int32_t t = static_cast<int32_t>(t64);
   for (int k = 0; k < 3; ++k) {
     const int32_t id = t * 3 + k;
@@ -147,9 +164,9 @@ __global__ void flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<cons
 
 __global__ void relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
                        DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                       int32_t round) {
+                       int32_t round, const TopologyCounters* counters) {
   const int64_t x64 = thread_index();
-  if (x64 >= tris.size || flipped_round[x64] != round) return;
+  if (x64 >= tris.size || counters->settled || flipped_round[x64] != round) return;
   const int32_t x = static_cast<int32_t>(x64);
   const Tri tri = tris[x];
   for (int k = 0; k < 3; ++k) {
@@ -300,6 +317,15 @@ void launch_renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t> ne
   MESHD_CHECK_LAUNCH("renumber_vertices");
 }
 
+void launch_open_flip_round(DeviceSpan<int32_t> vote, TopologyCounters* counters,
+                            cudaStream_t stream) {
+  open_flip_round<<<1, 1, 0, stream>>>(counters);
+  MESHD_CHECK_LAUNCH("open_flip_round");
+  if (vote.size == 0) return;
+  reset_votes<<<blocks_for(vote.size), kBlock, 0, stream>>>(vote, counters);
+  MESHD_CHECK_LAUNCH("reset_votes");
+}
+
 void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                             DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
                             DeviceSpan<int32_t> undecided, TopologyCounters* counters,
@@ -336,9 +362,10 @@ void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const in
 
 void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
                    DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                   int32_t round, cudaStream_t stream) {
+                   int32_t round, const TopologyCounters* counters, cudaStream_t stream) {
   if (tris.size == 0) return;
-  relink<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, flipped_round, partner, round);
+  relink<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, flipped_round, partner, round,
+                                                       counters);
   MESHD_CHECK_LAUNCH("relink");
 }
 
