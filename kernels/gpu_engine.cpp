@@ -17,6 +17,7 @@
 #include "kernels/complete_gaps.h"
 #include "kernels/device_buffer.h"
 #include "kernels/finish_mesh.h"
+#include "kernels/flip_round.h"
 #include "kernels/keep_triangles.h"
 #include "kernels/lattice_triangulation.h"
 #include "kernels/launch.h"
@@ -145,6 +146,8 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   int32_t round = 0;
+  bool round_full = true, next_round_full = true;  // flip_round.h
+  gpu::FlipLists flip_lists;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
   ForceSum force_sum = ForceSum::kGather;
@@ -495,8 +498,11 @@ struct GpuEngine::Impl {
   int64_t flip_to_delaunay() {
     const int64_t mt = static_cast<int64_t>(tris.size());
     vote.resize(mt);
+    if (mt > 0) MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
     partner.resize(mt);
     undecided.resize(kMaxUndecided);
+    gpu::reset_flip_lists(flip_lists, mt, stream);
+    next_round_full = true;
     reset_counters();
     for (int rounds = 0; rounds < kMaxFlipRounds; rounds += kRoundsPerBatch) {
       // A batch of rounds back to back, read once: repairs cascade through a dozen rounds of a
@@ -526,28 +532,31 @@ struct GpuEngine::Impl {
     launch_candidates();
     flip_and_relink();
   }
+  // The views of the current round.
+  gpu::FlipRound flip_round_views() {
+    return {p.span(),       tris.span(),      nbrs.span(),     vote.span(), flipped_round.span(),
+            partner.span(), undecided.span(), counters.data(), round,       round_full,
+            &flip_lists};
+  }
   void launch_candidates() {
     ++round;
+    round_full = next_round_full;
+    next_round_full = false;
     // candidates and undecided count per round; flips add up over the repair.
-    gpu::launch_open_flip_round(vote.span(), counters.data(), stream);
-    gpu::launch_flip_candidates(p.span(), tris.span(), nbrs.span(), vote.span(), undecided.span(),
-                                counters.data(), stream);
+    gpu::launch_flip_candidates(flip_round_views(), stream);
   }
-  // A round that the host drives counts afresh, whatever the batch before it settled on.
+  // A round that the host drives tests every edge afresh, whatever the batch before it settled
+  // on.
   gpu::TopologyCounters candidates_round() {
     unsettle();
+    next_round_full = true;
     launch_candidates();
     return read_counters();
   }
   void unsettle() {
     MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->checked, 0, 2 * sizeof(int32_t), stream));
   }
-  void flip_and_relink() {
-    gpu::launch_flip(tris.span(), nbrs.span(), vote.span(), flipped_round.span(), partner.span(),
-                     round, counters.data(), stream);
-    gpu::launch_relink(tris.span(), nbrs.span(), flipped_round.span(), partner.span(), round,
-                       counters.data(), stream);
-  }
+  void flip_and_relink() { gpu::launch_flips(flip_round_views(), stream); }
 
   // The exact fallback: in-circle tests the filter left undecided, on the host with CGAL's exact
   // predicates. Votes for the edges that must flip; returns how many.
@@ -572,7 +581,7 @@ struct GpuEngine::Impl {
       if (in_circle_sign(q.a, q.b, q.c, q.d) > 0) flip_ids.push_back(ids[i]);
     }
     decided.upload(flip_ids.data(), flip_ids.size(), stream);
-    gpu::launch_vote_edges(decided.span(), nbrs.span(), vote.span(), stream);
+    gpu::launch_vote_edges(flip_round_views(), decided.span(), stream);
     sync();  // flip_ids is a host vector
     return static_cast<int32_t>(flip_ids.size());
   }

@@ -180,6 +180,8 @@ struct TopologyCounters {
   // return at once instead.
   int32_t checked;
   int32_t settled;
+  int32_t voted;      // triangles a candidate of this round voted for (flip_round.h)
+  int32_t queued[2];  // triangles on the rounds' two work lists (flip_round.h)
 };
 
 // alive[t] = 0 for inverted or flat expendable triangles (outside, or boundary slivers: see
@@ -200,36 +202,15 @@ void launch_compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> 
                               DeviceSpan<Tri> tris_out, DeviceSpan<Tri> nbrs_out,
                               cudaStream_t stream);
 
-// One round of parallel Lawson flips, in four launches: the round opens (the votes reset, the
-// round's counts zeroed, or the batch settled when the last round found no candidate),
-// candidates vote for their two triangles (the smallest edge id wins both, so every round makes
-// progress), winners flip, and flipped triangles re-link their outer neighbours. Undecided
-// tests are listed for the host. Every launch of a settled batch returns at once.
-void launch_open_flip_round(DeviceSpan<int32_t> vote, TopologyCounters* counters,
-                            cudaStream_t stream);
-void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
-                            DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
-                            DeviceSpan<int32_t> undecided, TopologyCounters* counters,
-                            cudaStream_t stream);
 // The points of an in-circle test: whether d lies inside the circle through a, b, c.
 struct InCircleTest {
   Vec2 a, b, c, d;
 };
-// tests[i] = the points of the in-circle test of edge ids[i] (t * 3 + k, as flip_candidates lists
+// tests[i] = the points of the in-circle test of edge ids[i] (t * 3 + k, as the flip rounds list
 // them), for the host's exact predicate.
 void launch_gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                    DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
                                    DeviceSpan<InCircleTest> tests, cudaStream_t stream);
-// Votes for edges (ids t * 3 + k) the host decided to flip.
-void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
-                       DeviceSpan<int32_t> vote, cudaStream_t stream);
-void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
-                 DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
-                 TopologyCounters* counters, cudaStream_t stream);
-void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
-                   DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                   int32_t round, const TopologyCounters* counters, cudaStream_t stream);
-
 // The boundary of the triangulation (edges with no neighbour): next[a] = b for each such edge
 // a -> b, counted in counters->candidates. Then hull_turns counts in counters->fatal the boundary
 // vertices where it turns right (a reflex corner: the triangles do not cover the convex hull).

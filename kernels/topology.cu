@@ -1,6 +1,6 @@
-// Topology on the device: the orientation check that decides between repair and rebuild, parallel
-// Lawson flips (candidates vote, winners flip, flipped triangles re-link), the centroid filter and
-// the bar list.
+// Topology on the device: the orientation check that decides between repair and rebuild, the
+// undecided in-circle tests' points for the host, the centroid filter and the bar list (the flips
+// themselves: flip_round.h).
 #include <climits>
 
 #include "core/distmesh/boundary_sliver.cuh"
@@ -12,15 +12,6 @@
 
 namespace meshd::gpu {
 namespace {
-
-__device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
-  bool h0 = false, h1 = false;
-  for (int k = 0; k < 3; ++k) {
-    h0 |= t.v[k] == e0;
-    h1 |= t.v[k] == e1;
-  }
-  return h0 && h1;
-}
 
 __global__ void check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                   DeviceSpan<const uint8_t> keep,
@@ -71,47 +62,6 @@ __global__ void renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t
   for (int k = 0; k < 3; ++k) tris[t].v[k] = new_index[tris[t].v[k]];
 }
 
-__global__ void open_flip_round(TopologyCounters* counters) {
-  if (counters->settled) return;
-  if (counters->checked && counters->candidates == 0) {
-    counters->settled = 1;
-    return;
-  }
-  counters->candidates = 0;
-  counters->undecided = 0;
-  counters->checked = 1;
-}
-
-__global__ void reset_votes(DeviceSpan<int32_t> vote, const TopologyCounters* counters) {
-  const int64_t t = thread_index();
-  if (t >= vote.size || counters->settled) return;
-  vote[t] = 0x7f7f7f7f;
-}
-
-__global__ void flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
-                                DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
-                                DeviceSpan<int32_t> undecided, TopologyCounters* counters) {
-  const int64_t t = thread_index();
-  if (t >= tris.size || counters->settled) return;
-  for (int k = 0; k < 3; ++k) {
-    const int32_t u = nbrs[t].v[k];
-    if (u <= t) continue;  // each interior edge once, from its lower triangle
-    const Tri tri = tris[t];
-    const int32_t d = tris[u].v[slot_of(nbrs[u], static_cast<int32_t>(t))];
-    const int s =
-        in_circle_filtered(p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]);
-    const int32_t id = static_cast<int32_t>(t) * 3 + k;
-    if (s > 0) {
-      atomicMin(&vote[t], id);
-      atomicMin(&vote[u], id);
-      atomicAdd(&counters->candidates, 1);
-    } else if (s == 0) {
-      const int32_t at = atomicAdd(&counters->undecided, 1);
-      if (at < undecided.size) undecided[at] = id;
-    }
-  }
-}
-
 __global__ void gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                        DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
                                        DeviceSpan<InCircleTest> tests) {
@@ -121,68 +71,6 @@ __global__ void gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<cons
   const Tri tri = tris[t];
   const int32_t d = tris[u].v[slot_of(nbrs[u], t)];
   tests[i] = {p[tri.v[k]], p[tri.v[(k + 1) % 3]], p[tri.v[(k + 2) % 3]], p[d]};
-}
-
-__global__ void vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
-                           DeviceSpan<int32_t> vote) {
-  const int64_t i = thread_index();
-  if (i >= edges.size) return;
-  const int32_t id = edges[i], t = id / 3, u = nbrs[t].v[id % 3];
-  atomicMin(&vote[t], id);
-  atomicMin(&vote[u], id);
-}
-
-// The flip of edge bc between t = [a, b, c] and u = [d, c, b] into t' = [a, b, d], u' = [a, d, c];
-// the outer neighbours keep their old ids here and are re-linked by relink.
-__global__ void flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
-                     DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
-                     TopologyCounters* counters) {
-  const int64_t t64 = thread_index();
-  if (t64 >= tris.size || counters->settled) return;
-  const int32_t t = static_cast<int32_t>(t64);
-  for (int k = 0; k < 3; ++k) {
-    const int32_t id = t * 3 + k;
-    if (vote[t] != id) continue;
-    const int32_t u = nbrs[t].v[k];
-    if (u <= t || vote[u] != id) continue;
-    const int j = slot_of(nbrs[u], t);
-    const Tri T = tris[t], U = tris[u], NT = nbrs[t], NU = nbrs[u];
-    const int32_t a = T.v[k], b = T.v[(k + 1) % 3], c = T.v[(k + 2) % 3], d = U.v[j];
-    const int32_t n_ab = NT.v[(k + 2) % 3], n_ca = NT.v[(k + 1) % 3];
-    const int32_t n_bd = NU.v[(j + 1) % 3], n_dc = NU.v[(j + 2) % 3];
-    tris[t] = Tri{{a, b, d}};
-    nbrs[t] = Tri{{n_bd, u, n_ab}};
-    tris[u] = Tri{{a, d, c}};
-    nbrs[u] = Tri{{n_dc, n_ca, t}};
-    flipped_round[t] = flipped_round[u] = round;
-    partner[t] = u;
-    partner[u] = t;
-    atomicAdd(&counters->flips, 1);
-    return;
-  }
-}
-
-__global__ void relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
-                       DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                       int32_t round, const TopologyCounters* counters) {
-  const int64_t x64 = thread_index();
-  if (x64 >= tris.size || counters->settled || flipped_round[x64] != round) return;
-  const int32_t x = static_cast<int32_t>(x64);
-  const Tri tri = tris[x];
-  for (int k = 0; k < 3; ++k) {
-    const int32_t y = nbrs[x].v[k];
-    if (y < 0) continue;
-    const int32_t e0 = tri.v[(k + 1) % 3], e1 = tri.v[(k + 2) % 3];
-    if (flipped_round[y] == round) {
-      // y flipped too: the edge now belongs to y or to y's partner.
-      nbrs[x].v[k] = has_edge(tris[y], e0, e1) ? y : partner[y];
-    } else {
-      // y did not flip: only x's thread writes y's slot for this edge.
-      const Tri ty = tris[y];
-      for (int s = 0; s < 3; ++s)
-        if (ty.v[s] != e0 && ty.v[s] != e1) nbrs[y].v[s] = x;
-    }
-  }
 }
 
 __global__ void hull_links(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
@@ -317,56 +205,12 @@ void launch_renumber_vertices(DeviceSpan<Tri> tris, DeviceSpan<const int32_t> ne
   MESHD_CHECK_LAUNCH("renumber_vertices");
 }
 
-void launch_open_flip_round(DeviceSpan<int32_t> vote, TopologyCounters* counters,
-                            cudaStream_t stream) {
-  open_flip_round<<<1, 1, 0, stream>>>(counters);
-  MESHD_CHECK_LAUNCH("open_flip_round");
-  if (vote.size == 0) return;
-  reset_votes<<<blocks_for(vote.size), kBlock, 0, stream>>>(vote, counters);
-  MESHD_CHECK_LAUNCH("reset_votes");
-}
-
-void launch_flip_candidates(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
-                            DeviceSpan<const Tri> nbrs, DeviceSpan<int32_t> vote,
-                            DeviceSpan<int32_t> undecided, TopologyCounters* counters,
-                            cudaStream_t stream) {
-  if (tris.size == 0) return;
-  flip_candidates<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, tris, nbrs, vote, undecided,
-                                                                counters);
-  MESHD_CHECK_LAUNCH("flip_candidates");
-}
-
 void launch_gather_in_circle_tests(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                    DeviceSpan<const Tri> nbrs, DeviceSpan<const int32_t> ids,
                                    DeviceSpan<InCircleTest> tests, cudaStream_t stream) {
   if (ids.size == 0) return;
   gather_in_circle_tests<<<blocks_for(ids.size), kBlock, 0, stream>>>(p, tris, nbrs, ids, tests);
   MESHD_CHECK_LAUNCH("gather_in_circle_tests");
-}
-
-void launch_vote_edges(DeviceSpan<const int32_t> edges, DeviceSpan<const Tri> nbrs,
-                       DeviceSpan<int32_t> vote, cudaStream_t stream) {
-  if (edges.size == 0) return;
-  vote_edges<<<blocks_for(edges.size), kBlock, 0, stream>>>(edges, nbrs, vote);
-  MESHD_CHECK_LAUNCH("vote_edges");
-}
-
-void launch_flip(DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs, DeviceSpan<const int32_t> vote,
-                 DeviceSpan<int32_t> flipped_round, DeviceSpan<int32_t> partner, int32_t round,
-                 TopologyCounters* counters, cudaStream_t stream) {
-  if (tris.size == 0) return;
-  flip<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, vote, flipped_round, partner,
-                                                     round, counters);
-  MESHD_CHECK_LAUNCH("flip");
-}
-
-void launch_relink(DeviceSpan<const Tri> tris, DeviceSpan<Tri> nbrs,
-                   DeviceSpan<const int32_t> flipped_round, DeviceSpan<const int32_t> partner,
-                   int32_t round, const TopologyCounters* counters, cudaStream_t stream) {
-  if (tris.size == 0) return;
-  relink<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, flipped_round, partner, round,
-                                                       counters);
-  MESHD_CHECK_LAUNCH("relink");
 }
 
 void launch_hull_links(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
