@@ -1,6 +1,5 @@
-// flip_round.h: grid-stride kernels over a round's lists, whose lengths live on the device.
-#include <algorithm>
-
+// flip_round.h: grid-stride kernels over a round's lists, whose lengths live on the device, and
+// the graph that loops over them.
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
 #include "kernels/predicates.cuh"
@@ -8,9 +7,6 @@
 
 namespace meshd::gpu {
 namespace {
-
-// A round's lists are read with at most this many blocks (their lengths are on the device).
-constexpr int64_t kMaxListBlocks = 2048;
 
 __device__ inline int64_t stride() { return static_cast<int64_t>(gridDim.x) * blockDim.x; }
 
@@ -21,25 +17,26 @@ __device__ inline void push(int32_t t, int32_t stamp, int32_t* stamps, int32_t* 
   list[atomicAdd(length, 1)] = t;
 }
 
-// Where round r reads and writes: rounds alternate between the two work lists.
-struct Lists {
-  const int32_t *in, *in_stamp;
-  int32_t *out, *out_stamp, *voted, *voted_stamp;
-  int in_slot, out_slot;
+// Round r reads work list r % 2 and writes the other, for round r + 1.
+struct Slots {
+  int in, out;
 };
-Lists lists_of(const FlipRound& r) {
-  const int in = r.round & 1, out = in ^ 1;
-  return {r.lists->work[in].data(),
-          r.lists->work_stamp[in].data(),
-          r.lists->work[out].data(),
-          r.lists->work_stamp[out].data(),
-          r.lists->voted.data(),
-          r.lists->voted_stamp.data(),
-          in,
-          out};
+__device__ inline Slots slots_of(const FlipBatch& b) {
+  const int in = b.round & 1;
+  return {in, in ^ 1};
+}
+__device__ inline void push_next(const FlipBatch& b, Slots s, int32_t t) {
+  push(t, b.round + 1, b.work_stamp[s.out], b.work[s.out], &b.counters->queued[s.out]);
 }
 
-__global__ void open_round(TopologyCounters* c, int out_slot) {
+// force_full: a round the host drives.
+__global__ void open_round(FlipBatch* b, bool force_full) {
+  TopologyCounters* c = b->counters;
+  if (force_full) {
+    c->checked = 0;
+    c->settled = 0;
+    b->full = 1;
+  }
   if (c->settled) return;
   if (c->checked && c->candidates == 0) {
     c->settled = 1;
@@ -49,82 +46,90 @@ __global__ void open_round(TopologyCounters* c, int out_slot) {
   c->undecided = 0;
   c->checked = 1;
   c->voted = 0;
-  c->queued[out_slot] = 0;
+  ++b->round;
+  b->round_full = b->full;
+  b->full = 0;
+  c->queued[slots_of(*b).out] = 0;
 }
 
-__global__ void test_edges(FlipRound r, Lists l) {
-  TopologyCounters* c = r.counters;
+__global__ void test_edges(const FlipBatch* bp) {
+  const FlipBatch& b = *bp;
+  TopologyCounters* c = b.counters;
   if (c->settled) return;
-  const int64_t n = r.full ? r.tris.size : c->queued[l.in_slot];
-  const int32_t next = r.round + 1;
+  const Slots s = slots_of(b);
+  const int64_t n = b.round_full ? b.tris.size : c->queued[s.in];
+  const int32_t* in = b.work[s.in];
+  const int32_t* in_stamp = b.work_stamp[s.in];
   for (int64_t i = thread_index(); i < n; i += stride()) {
-    const auto t = static_cast<int32_t>(r.full ? i : l.in[i]);
-    const Tri tri = r.tris[t], nbr = r.nbrs[t];
+    const auto t = static_cast<int32_t>(b.round_full ? i : in[i]);
+    const Tri tri = b.tris[t], nbr = b.nbrs[t];
     for (int k = 0; k < 3; ++k) {
       const int32_t u = nbr.v[k];
       if (u < 0) continue;
       // Each edge once: from its lower triangle where both are on the list.
-      if (u < t && (r.full || l.in_stamp[u] == r.round)) continue;
-      const int32_t d = r.tris[u].v[slot_of(r.nbrs[u], t)];
-      const int s = in_circle_filtered(r.p[tri.v[k]], r.p[tri.v[(k + 1) % 3]],
-                                       r.p[tri.v[(k + 2) % 3]], r.p[d]);
+      if (u < t && (b.round_full || in_stamp[u] == b.round)) continue;
+      const int32_t d = b.tris[u].v[slot_of(b.nbrs[u], t)];
+      const int sign = in_circle_filtered(b.p[tri.v[k]], b.p[tri.v[(k + 1) % 3]],
+                                          b.p[tri.v[(k + 2) % 3]], b.p[d]);
       const int32_t id = t * 3 + k;
-      if (s > 0) {
-        atomicMin(&r.vote[t], id);
-        atomicMin(&r.vote[u], id);
+      if (sign > 0) {
+        atomicMin(&b.vote[t], id);
+        atomicMin(&b.vote[u], id);
         atomicAdd(&c->candidates, 1);
-        push(t, r.round, l.voted_stamp, l.voted, &c->voted);
-        push(u, r.round, l.voted_stamp, l.voted, &c->voted);
-      } else if (s == 0) {
+        push(t, b.round, b.voted_stamp, b.voted, &c->voted);
+        push(u, b.round, b.voted_stamp, b.voted, &c->voted);
+      } else if (sign == 0) {
         const int32_t at = atomicAdd(&c->undecided, 1);
-        if (at < r.undecided.size) r.undecided[at] = id;
-        push(t, next, l.out_stamp, l.out, &c->queued[l.out_slot]);
-        push(u, next, l.out_stamp, l.out, &c->queued[l.out_slot]);
+        if (at < b.undecided.size) b.undecided[at] = id;
+        push_next(b, s, t);
+        push_next(b, s, u);
       }
     }
   }
 }
 
-__global__ void vote_edges(FlipRound r, Lists l, DeviceSpan<const int32_t> edges) {
+__global__ void vote_edges(const FlipBatch* bp, DeviceSpan<const int32_t> edges) {
+  const FlipBatch& b = *bp;
   const int64_t i = thread_index();
   if (i >= edges.size) return;
-  const int32_t id = edges[i], t = id / 3, u = r.nbrs[t].v[id % 3];
-  atomicMin(&r.vote[t], id);
-  atomicMin(&r.vote[u], id);
-  push(t, r.round, l.voted_stamp, l.voted, &r.counters->voted);
-  push(u, r.round, l.voted_stamp, l.voted, &r.counters->voted);
+  const int32_t id = edges[i], t = id / 3, u = b.nbrs[t].v[id % 3];
+  atomicMin(&b.vote[t], id);
+  atomicMin(&b.vote[u], id);
+  push(t, b.round, b.voted_stamp, b.voted, &b.counters->voted);
+  push(u, b.round, b.voted_stamp, b.voted, &b.counters->voted);
 }
 
 // The flip of edge bc between t = [a, b, c] and u = [d, c, b] into t' = [a, b, d], u' = [a, d, c];
 // the outer neighbours keep their old ids here and are re-linked by relink.
-__global__ void flip(FlipRound r, Lists l) {
-  TopologyCounters* c = r.counters;
+__global__ void flip(const FlipBatch* bp) {
+  const FlipBatch& b = *bp;
+  TopologyCounters* c = b.counters;
   if (c->settled) return;
+  const Slots s = slots_of(b);
   const int64_t n = c->voted;
-  const int32_t next = r.round + 1;
   for (int64_t i = thread_index(); i < n; i += stride()) {
-    const int32_t t = l.voted[i];
+    const int32_t t = b.voted[i];
     for (int k = 0; k < 3; ++k) {
       const int32_t id = t * 3 + k;
-      if (r.vote[t] != id) continue;
-      const int32_t u = r.nbrs[t].v[k];
-      if (u <= t || r.vote[u] != id) continue;
-      const int j = slot_of(r.nbrs[u], t);
-      const Tri T = r.tris[t], U = r.tris[u], NT = r.nbrs[t], NU = r.nbrs[u];
-      const int32_t a = T.v[k], b = T.v[(k + 1) % 3], cc = T.v[(k + 2) % 3], d = U.v[j];
+      if (b.vote[t] != id) continue;
+      const int32_t u = b.nbrs[t].v[k];
+      if (u <= t || b.vote[u] != id) continue;
+      const int j = slot_of(b.nbrs[u], t);
+      const Tri T = b.tris[t], U = b.tris[u], NT = b.nbrs[t], NU = b.nbrs[u];
+      const int32_t va = T.v[k], vb = T.v[(k + 1) % 3], vc = T.v[(k + 2) % 3], vd = U.v[j];
       const int32_t n_ab = NT.v[(k + 2) % 3], n_ca = NT.v[(k + 1) % 3];
       const int32_t n_bd = NU.v[(j + 1) % 3], n_dc = NU.v[(j + 2) % 3];
-      r.tris[t] = Tri{{a, b, d}};
-      r.nbrs[t] = Tri{{n_bd, u, n_ab}};
-      r.tris[u] = Tri{{a, d, cc}};
-      r.nbrs[u] = Tri{{n_dc, n_ca, t}};
-      r.flipped_round[t] = r.flipped_round[u] = r.round;
-      r.partner[t] = u;
-      r.partner[u] = t;
+      b.tris[t] = Tri{{va, vb, vd}};
+      b.nbrs[t] = Tri{{n_bd, u, n_ab}};
+      b.tris[u] = Tri{{va, vd, vc}};
+      b.nbrs[u] = Tri{{n_dc, n_ca, t}};
+      b.flipped_round[t] = b.flipped_round[u] = b.round;
+      b.partner[t] = u;
+      b.partner[u] = t;
       atomicAdd(&c->flips, 1);
       // The next round tests the edges of both and of their outer neighbours.
       const int32_t around[6] = {t, u, n_ab, n_ca, n_bd, n_dc};
-      for (const int32_t x : around) push(x, next, l.out_stamp, l.out, &c->queued[l.out_slot]);
+      for (const int32_t x : around) push_next(b, s, x);
       break;
     }
   }
@@ -139,45 +144,50 @@ __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   return h0 && h1;
 }
 
-__global__ void relink(FlipRound r, Lists l) {
-  const TopologyCounters* c = r.counters;
+__global__ void relink(const FlipBatch* bp) {
+  const FlipBatch& b = *bp;
+  const TopologyCounters* c = b.counters;
   if (c->settled) return;
   const int64_t n = c->voted;
   for (int64_t i = thread_index(); i < n; i += stride()) {
-    const int32_t x = l.voted[i];
-    if (r.flipped_round[x] != r.round) continue;
-    const Tri tri = r.tris[x];
+    const int32_t x = b.voted[i];
+    if (b.flipped_round[x] != b.round) continue;
+    const Tri tri = b.tris[x];
     for (int k = 0; k < 3; ++k) {
-      const int32_t y = r.nbrs[x].v[k];
+      const int32_t y = b.nbrs[x].v[k];
       if (y < 0) continue;
       const int32_t e0 = tri.v[(k + 1) % 3], e1 = tri.v[(k + 2) % 3];
-      if (r.flipped_round[y] == r.round) {
+      if (b.flipped_round[y] == b.round) {
         // y flipped too: the edge now belongs to y or to y's partner.
-        r.nbrs[x].v[k] = has_edge(r.tris[y], e0, e1) ? y : r.partner[y];
+        b.nbrs[x].v[k] = has_edge(b.tris[y], e0, e1) ? y : b.partner[y];
       } else {
         // y did not flip: only x's thread writes y's slot for this edge.
-        const Tri ty = r.tris[y];
-        for (int s = 0; s < 3; ++s)
-          if (ty.v[s] != e0 && ty.v[s] != e1) r.nbrs[y].v[s] = x;
+        const Tri ty = b.tris[y];
+        for (int v = 0; v < 3; ++v)
+          if (ty.v[v] != e0 && ty.v[v] != e1) b.nbrs[y].v[v] = x;
       }
     }
   }
 }
 
-// The voted triangles' votes go back, and those that did not flip test again next round.
-__global__ void close_round(FlipRound r, Lists l) {
-  TopologyCounters* c = r.counters;
+// The voted triangles' votes go back, and those that did not flip test again next round. In the
+// graph, the loop goes on while rounds find candidates.
+__global__ void close_round(FlipBatch* bp, bool in_graph, cudaGraphConditionalHandle more) {
+  FlipBatch& b = *bp;
+  TopologyCounters* c = b.counters;
+  if (in_graph && thread_index() == 0) {
+    const bool again = !c->settled && c->candidates > 0 && ++b.rounds < kGraphFlipRounds;
+    if (!again) b.rounds = 0;
+    cudaGraphSetConditional(more, again);
+  }
   if (c->settled) return;
+  const Slots s = slots_of(b);
   const int64_t n = c->voted;
   for (int64_t i = thread_index(); i < n; i += stride()) {
-    const int32_t t = l.voted[i];
-    r.vote[t] = 0x7f7f7f7f;
-    push(t, r.round + 1, l.out_stamp, l.out, &c->queued[l.out_slot]);
+    const int32_t t = b.voted[i];
+    b.vote[t] = 0x7f7f7f7f;
+    push_next(b, s, t);
   }
-}
-
-int64_t list_blocks(const FlipRound& r) {
-  return std::max<int64_t>(1, std::min(blocks_for(r.tris.size), kMaxListBlocks));
 }
 
 }  // namespace
@@ -191,31 +201,78 @@ void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream) {
     MESHD_CUDA_CHECK(cudaMemsetAsync(b->data(), 0x80, m * sizeof(int32_t), stream));  // < 0
 }
 
-void launch_flip_candidates(const FlipRound& r, cudaStream_t stream) {
-  const Lists l = lists_of(r);
-  open_round<<<1, 1, 0, stream>>>(r.counters, l.out_slot);
+void launch_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
+  open_round<<<1, 1, 0, stream>>>(batch, false);
   MESHD_CHECK_LAUNCH("open_round");
-  if (r.tris.size == 0) return;
-  test_edges<<<list_blocks(r), kBlock, 0, stream>>>(r, l);
+  test_edges<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("test_edges");
 }
 
-void launch_vote_edges(const FlipRound& r, DeviceSpan<const int32_t> edges, cudaStream_t stream) {
+void launch_full_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
+  open_round<<<1, 1, 0, stream>>>(batch, true);
+  MESHD_CHECK_LAUNCH("open_round");
+  test_edges<<<blocks, kBlock, 0, stream>>>(batch);
+  MESHD_CHECK_LAUNCH("test_edges");
+}
+
+void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaStream_t stream) {
   if (edges.size == 0) return;
-  vote_edges<<<blocks_for(edges.size), kBlock, 0, stream>>>(r, lists_of(r), edges);
+  vote_edges<<<blocks_for(edges.size), kBlock, 0, stream>>>(batch, edges);
   MESHD_CHECK_LAUNCH("vote_edges");
 }
 
-void launch_flips(const FlipRound& r, cudaStream_t stream) {
-  if (r.tris.size == 0) return;
-  const Lists l = lists_of(r);
-  const int64_t blocks = list_blocks(r);
-  flip<<<blocks, kBlock, 0, stream>>>(r, l);
+void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
+                  cudaStream_t stream) {
+  flip<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("flip");
-  relink<<<blocks, kBlock, 0, stream>>>(r, l);
+  relink<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("relink");
-  close_round<<<blocks, kBlock, 0, stream>>>(r, l);
+  close_round<<<blocks, kBlock, 0, stream>>>(batch, more != nullptr, more != nullptr ? *more : 0);
   MESHD_CHECK_LAUNCH("close_round");
+}
+
+FlipGraph::FlipGraph(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
+  MESHD_CUDA_CHECK(cudaGraphCreate(&graph_, 0));
+  try {
+    // The loop's condition starts at 1 on every launch: a launch runs at least one round.
+    cudaGraphConditionalHandle more;
+    MESHD_CUDA_CHECK(
+        cudaGraphConditionalHandleCreate(&more, graph_, 1, cudaGraphCondAssignDefault));
+    cudaGraphNodeParams loop{};
+    loop.type = cudaGraphNodeTypeConditional;
+    loop.conditional.handle = more;
+    loop.conditional.type = cudaGraphCondTypeWhile;
+    loop.conditional.size = 1;
+    cudaGraphNode_t node;
+    MESHD_CUDA_CHECK(cudaGraphAddNode(&node, graph_, nullptr, nullptr, 0, &loop));
+    cudaGraph_t body = loop.conditional.phGraph_out[0];
+    // The body is captured from the launch wrappers, so that they stay the one place that
+    // launches these kernels.
+    MESHD_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
+                                                   cudaStreamCaptureModeThreadLocal));
+    try {
+      CaptureScope capturing;
+      launch_flip_candidates(batch, blocks, stream);
+      launch_flips(batch, blocks, &more, stream);
+    } catch (...) {
+      cudaStreamEndCapture(stream, &body);
+      throw;
+    }
+    MESHD_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
+    MESHD_CUDA_CHECK(cudaGraphInstantiate(&exec_, graph_, 0));
+  } catch (...) {
+    cudaGraphDestroy(graph_);
+    throw;
+  }
+}
+
+FlipGraph::~FlipGraph() {
+  if (exec_ != nullptr) cudaGraphExecDestroy(exec_);
+  cudaGraphDestroy(graph_);
+}
+
+void FlipGraph::launch(cudaStream_t stream) const {
+  MESHD_CUDA_CHECK(cudaGraphLaunch(exec_, stream));
 }
 
 }  // namespace meshd::gpu

@@ -8,6 +8,10 @@
 // flipped in the round before and their neighbours, and those that had a candidate or an
 // undecided test there. A graded job's repair cascades through 20-30 rounds of a few thousand
 // flips among two million triangles; testing them all every round was most of its time.
+//
+// The kernels read their arguments from a FlipBatch in device memory and count the rounds there,
+// so that one CUDA graph (FlipGraph) runs the rounds of every repair of every job: a while loop
+// that ends when a round finds no candidate, with no host round trip in between.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -27,9 +31,8 @@ struct FlipLists {
   DeviceBuffer<int32_t> voted, voted_stamp;      // the triangles a candidate voted for
 };
 
-// One round's views. `full`: test every edge (the first round of a repair, or one that the host
-// drives), otherwise those of the round's work list.
-struct FlipRound {
+// In device memory, written by the host once per repair (the views) and by the kernels.
+struct FlipBatch {
   DeviceSpan<const Vec2> p;
   DeviceSpan<Tri> tris, nbrs;
   DeviceSpan<int32_t> vote;           // #M, 0x7f7f7f7f between rounds
@@ -37,20 +40,50 @@ struct FlipRound {
   DeviceSpan<int32_t> partner;        // #M
   DeviceSpan<int32_t> undecided;      // the round's undecided edge ids (up to its size)
   TopologyCounters* counters;
-  int32_t round;
-  bool full;
-  FlipLists* lists;
+  int32_t *work[2], *work_stamp[2], *voted, *voted_stamp;  // FlipLists
+  int32_t full;  // the next round tests every edge (the first of a repair, or one the host drives)
+  // Written by the kernels only: the host's copy of the fields above ends here.
+  int32_t round;       // the current round's number, counted on the device for the engine's life
+  int32_t round_full;  // the current round tests every edge
+  int32_t rounds;      // rounds the graph's loop has run since its launch
 };
+
+// Rounds one launch of the graph may run (a repair that needs more is pathological).
+constexpr int32_t kGraphFlipRounds = 200;
 
 // Sizes the lists for #M triangles and forgets every stamp: at the start of a repair.
 void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream);
 
-// The round's first half: opens it (or settles the batch, see TopologyCounters) and tests its
-// edges, voting and listing.
-void launch_flip_candidates(const FlipRound& r, cudaStream_t stream);
+// The round's first half: opens it (or settles a batch launched one round at a time, see
+// TopologyCounters) and tests its edges, voting and listing. `blocks`: a fixed grid (the kernels
+// stride over their lists, whose lengths live on the device).
+void launch_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
+// The same for a round the host drives: it tests every edge and counts afresh, whatever the
+// rounds before it settled on.
+void launch_full_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
 // Votes for the edges (ids 3 t + k) that the host decided to flip, between the two halves.
-void launch_vote_edges(const FlipRound& r, DeviceSpan<const int32_t> edges, cudaStream_t stream);
-// The second half: the flips, the links, the votes reset and the next round's list.
-void launch_flips(const FlipRound& r, cudaStream_t stream);
+void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaStream_t stream);
+// The second half: the flips, the links, the votes reset and the next round's list. In the
+// graph (`more` given), sets its loop condition: whether the round found candidates, within
+// kGraphFlipRounds rounds of the launch.
+void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
+                  cudaStream_t stream);
+
+// The rounds as one CUDA graph, built once per engine. Host code; CUDA 12.4 or later.
+class FlipGraph {
+ public:
+  // batch: device memory, kept for the graph's life.
+  FlipGraph(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
+  ~FlipGraph();
+  FlipGraph(const FlipGraph&) = delete;
+  FlipGraph& operator=(const FlipGraph&) = delete;
+
+  // Runs rounds until one finds no candidate (at most kGraphFlipRounds).
+  void launch(cudaStream_t stream) const;
+
+ private:
+  cudaGraph_t graph_ = nullptr;
+  cudaGraphExec_t exec_ = nullptr;
+};
 
 }  // namespace meshd::gpu

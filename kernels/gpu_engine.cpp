@@ -37,10 +37,11 @@ namespace {
 
 // Undecided in-circle tests a round may hand to the host; more means a rebuild.
 constexpr int32_t kMaxUndecided = 4096;
-// A repair that needs more rounds than this is pathological: rebuild instead.
-constexpr int kMaxFlipRounds = 200;
-// Flip rounds launched between two reads of the counters.
+// Flip rounds launched one by one (without the graph) between two reads of the counters.
 constexpr int kRoundsPerBatch = 8;
+// A repair that needs more batches of rounds than this (or, with the graph, more than
+// gpu::kGraphFlipRounds rounds at once) is pathological: rebuild instead.
+constexpr int kMaxFlipLaunches = 25;
 
 // Pinned host memory for the few scalars read every step.
 template <typename T>
@@ -145,9 +146,10 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
-  int32_t round = 0;
-  bool round_full = true, next_round_full = true;  // flip_round.h
   gpu::FlipLists flip_lists;
+  DeviceBuffer<gpu::FlipBatch> flip_batch;     // one
+  std::unique_ptr<gpu::FlipGraph> flip_graph;  // null: the rounds launched one by one
+  PinnedValue<gpu::FlipBatch> h_flip;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
   ForceSum force_sum = ForceSum::kGather;
@@ -502,61 +504,70 @@ struct GpuEngine::Impl {
     partner.resize(mt);
     undecided.resize(kMaxUndecided);
     gpu::reset_flip_lists(flip_lists, mt, stream);
-    next_round_full = true;
     reset_counters();
-    for (int rounds = 0; rounds < kMaxFlipRounds; rounds += kRoundsPerBatch) {
-      // A batch of rounds back to back, read once: repairs cascade through a dozen rounds of a
-      // few flips each, and a host round trip per round would cost more than the flips.
-      for (int r = 0; r < kRoundsPerBatch; ++r) flip_round();
+    write_flip_batch();  // after every buffer it points into is sized
+    for (int launches = 0; launches < kMaxFlipLaunches; ++launches) {
+      // Rounds back to back, read once: repairs cascade through a dozen rounds of a few flips
+      // each, and a host round trip per round would cost more than the flips.
+      run_flip_rounds();
       const gpu::TopologyCounters rc = read_counters();
       if (rc.undecided > kMaxUndecided) return -1;
       if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
+      if (rc.candidates > 0 && flip_graph) return -1;  // kGraphFlipRounds rounds were not enough
       if (rc.undecided > 0) {
-        // The batch's lists are stale after its last flips: one round again, with the host
-        // deciding what the filter could not.
-        const gpu::TopologyCounters again = candidates_round();
+        // The rounds' lists are stale after their last flips: one round again, testing every
+        // edge, with the host deciding what the filter could not.
+        gpu::launch_full_flip_candidates(flip_batch.data(), step_wave, stream);
+        const gpu::TopologyCounters again = read_counters();
         if (again.undecided > kMaxUndecided) return -1;
         const int32_t to_flip = again.undecided > 0 ? decide_on_host(again.undecided) : 0;
         // Exactly co-circular quadruples stay undecided for the filter: once the host says
         // that none of them flips and nothing else does, the triangulation is Delaunay.
         if (again.candidates == 0 && to_flip == 0) return again.flips;
-        flip_and_relink();
+        gpu::launch_flips(flip_batch.data(), step_wave, nullptr, stream);
         unsettle();  // the host's flips may make new candidates, however few the round found
       }
     }
     return -1;
   }
 
-  // One round of flips without a host round trip.
-  void flip_round() {
-    launch_candidates();
-    flip_and_relink();
+  // The repair's views for the flip rounds (flip_round.h); its first round tests every edge.
+  void write_flip_batch() {
+    gpu::FlipBatch& b = *h_flip.get();
+    b.p = p.span();
+    b.tris = tris.span();
+    b.nbrs = nbrs.span();
+    b.vote = vote.span();
+    b.flipped_round = flipped_round.span();
+    b.partner = partner.span();
+    b.undecided = undecided.span();
+    b.counters = counters.data();
+    for (int k = 0; k < 2; ++k) {
+      b.work[k] = flip_lists.work[k].data();
+      b.work_stamp[k] = flip_lists.work_stamp[k].data();
+    }
+    b.voted = flip_lists.voted.data();
+    b.voted_stamp = flip_lists.voted_stamp.data();
+    b.full = 1;
+    // The round counters after `full` belong to the device.
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(flip_batch.data(), &b, offsetof(gpu::FlipBatch, round),
+                                     cudaMemcpyHostToDevice, stream));
   }
-  // The views of the current round.
-  gpu::FlipRound flip_round_views() {
-    return {p.span(),       tris.span(),      nbrs.span(),     vote.span(), flipped_round.span(),
-            partner.span(), undecided.span(), counters.data(), round,       round_full,
-            &flip_lists};
-  }
-  void launch_candidates() {
-    ++round;
-    round_full = next_round_full;
-    next_round_full = false;
-    // candidates and undecided count per round; flips add up over the repair.
-    gpu::launch_flip_candidates(flip_round_views(), stream);
-  }
-  // A round that the host drives tests every edge afresh, whatever the batch before it settled
-  // on.
-  gpu::TopologyCounters candidates_round() {
-    unsettle();
-    next_round_full = true;
-    launch_candidates();
-    return read_counters();
+  // Rounds until one finds no candidate (the graph), or kRoundsPerBatch rounds launched one by
+  // one, of which those after such a round return at once.
+  void run_flip_rounds() {
+    if (flip_graph) {
+      flip_graph->launch(stream);
+      return;
+    }
+    for (int r = 0; r < kRoundsPerBatch; ++r) {
+      gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
+      gpu::launch_flips(flip_batch.data(), step_wave, nullptr, stream);
+    }
   }
   void unsettle() {
     MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->checked, 0, 2 * sizeof(int32_t), stream));
   }
-  void flip_and_relink() { gpu::launch_flips(flip_round_views(), stream); }
 
   // The exact fallback: in-circle tests the filter left undecided, on the host with CGAL's exact
   // predicates. Votes for the edges that must flip; returns how many.
@@ -581,7 +592,7 @@ struct GpuEngine::Impl {
       if (in_circle_sign(q.a, q.b, q.c, q.d) > 0) flip_ids.push_back(ids[i]);
     }
     decided.upload(flip_ids.data(), flip_ids.size(), stream);
-    gpu::launch_vote_edges(flip_round_views(), decided.span(), stream);
+    gpu::launch_vote_edges(flip_batch.data(), decided.span(), stream);
     sync();  // flip_ids is a host vector
     return static_cast<int32_t>(flip_ids.size());
   }
@@ -661,6 +672,9 @@ GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_uniq
   MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));
   impl_->step_wave = gpu::move_nodes_wave(device);
   impl_->batch.resize(1);
+  impl_->flip_batch.resize(1);
+  MESHD_CUDA_CHECK(
+      cudaMemsetAsync(impl_->flip_batch.data(), 0, sizeof(gpu::FlipBatch), impl_->stream));
   // compute-sanitizer's racecheck crashes on graphs with conditional nodes: the variable runs the
   // same kernels launched one by one under it.
   const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");
@@ -853,8 +867,10 @@ void GpuEngine::set_step_graph(bool on) {
   s.use_device();
   if (!on) {
     s.step_graph.reset();
+    s.flip_graph.reset();
   } else if (!s.step_graph) {
     s.step_graph = std::make_unique<gpu::StepGraph>(s.batch.data(), s.step_wave, s.stream);
+    s.flip_graph = std::make_unique<gpu::FlipGraph>(s.flip_batch.data(), s.step_wave, s.stream);
   }
 }
 

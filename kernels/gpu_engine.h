@@ -55,9 +55,11 @@ class GpuEngine final : public Engine {
   // the CPU engine does (its last bits differ all the same: its sums run in another order).
   void set_lagged_scale(bool on);
 
-  // The step as a CUDA graph that runs up to 32 steps per host round trip (step_graph.h; the
-  // default, unless the environment sets MESHD_GPU_STEP_GRAPH=0), or its kernels launched one by
-  // one, one step per round trip (for comparison, and for tools that cannot follow the graph).
+  // The step as a CUDA graph that runs up to 32 steps per host round trip (step_graph.h), and a
+  // repair's flip rounds as one that runs them until they settle (flip_round.h): the default,
+  // unless the environment sets MESHD_GPU_STEP_GRAPH=0. Otherwise their kernels are launched one
+  // by one, one step or eight rounds per round trip (for comparison, and for tools that cannot
+  // follow a graph).
   void set_step_graph(bool on);
 
   const char* name() const override { return "gpu"; }
