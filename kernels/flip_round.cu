@@ -1,5 +1,4 @@
-// flip_round.h: grid-stride kernels over a round's lists, whose lengths live on the device, and
-// the graph that loops over them.
+// flip_round.h: grid-stride kernels over a round's lists, whose lengths live on the device.
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
 #include "kernels/predicates.cuh"
@@ -229,50 +228,6 @@ void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHa
   MESHD_CHECK_LAUNCH("relink");
   close_round<<<blocks, kBlock, 0, stream>>>(batch, more != nullptr, more != nullptr ? *more : 0);
   MESHD_CHECK_LAUNCH("close_round");
-}
-
-FlipGraph::FlipGraph(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
-  MESHD_CUDA_CHECK(cudaGraphCreate(&graph_, 0));
-  try {
-    // The loop's condition starts at 1 on every launch: a launch runs at least one round.
-    cudaGraphConditionalHandle more;
-    MESHD_CUDA_CHECK(
-        cudaGraphConditionalHandleCreate(&more, graph_, 1, cudaGraphCondAssignDefault));
-    cudaGraphNodeParams loop{};
-    loop.type = cudaGraphNodeTypeConditional;
-    loop.conditional.handle = more;
-    loop.conditional.type = cudaGraphCondTypeWhile;
-    loop.conditional.size = 1;
-    cudaGraphNode_t node;
-    MESHD_CUDA_CHECK(cudaGraphAddNode(&node, graph_, nullptr, nullptr, 0, &loop));
-    cudaGraph_t body = loop.conditional.phGraph_out[0];
-    // The body is captured from the launch wrappers, so that they stay the one place that
-    // launches these kernels.
-    MESHD_CUDA_CHECK(cudaStreamBeginCaptureToGraph(stream, body, nullptr, nullptr, 0,
-                                                   cudaStreamCaptureModeThreadLocal));
-    try {
-      CaptureScope capturing;
-      launch_flip_candidates(batch, blocks, stream);
-      launch_flips(batch, blocks, &more, stream);
-    } catch (...) {
-      cudaStreamEndCapture(stream, &body);
-      throw;
-    }
-    MESHD_CUDA_CHECK(cudaStreamEndCapture(stream, &body));
-    MESHD_CUDA_CHECK(cudaGraphInstantiate(&exec_, graph_, 0));
-  } catch (...) {
-    cudaGraphDestroy(graph_);
-    throw;
-  }
-}
-
-FlipGraph::~FlipGraph() {
-  if (exec_ != nullptr) cudaGraphExecDestroy(exec_);
-  cudaGraphDestroy(graph_);
-}
-
-void FlipGraph::launch(cudaStream_t stream) const {
-  MESHD_CUDA_CHECK(cudaGraphLaunch(exec_, stream));
 }
 
 }  // namespace meshd::gpu

@@ -10,8 +10,8 @@
 // flips among two million triangles; testing them all every round was most of its time.
 //
 // The kernels read their arguments from a FlipBatch in device memory and count the rounds there,
-// so that one CUDA graph (FlipGraph) runs the rounds of every repair of every job: a while loop
-// that ends when a round finds no candidate, with no host round trip in between.
+// so that one CUDA graph (loop_graph.h) runs the rounds of every repair of every job: a while
+// loop that ends when a round finds no candidate, with no host round trip in between.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -68,22 +68,5 @@ void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaSt
 // kGraphFlipRounds rounds of the launch.
 void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
                   cudaStream_t stream);
-
-// The rounds as one CUDA graph, built once per engine. Host code; CUDA 12.4 or later.
-class FlipGraph {
- public:
-  // batch: device memory, kept for the graph's life.
-  FlipGraph(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
-  ~FlipGraph();
-  FlipGraph(const FlipGraph&) = delete;
-  FlipGraph& operator=(const FlipGraph&) = delete;
-
-  // Runs rounds until one finds no candidate (at most kGraphFlipRounds).
-  void launch(cudaStream_t stream) const;
-
- private:
-  cudaGraph_t graph_ = nullptr;
-  cudaGraphExec_t exec_ = nullptr;
-};
 
 }  // namespace meshd::gpu

@@ -21,9 +21,9 @@
 #include "kernels/keep_triangles.h"
 #include "kernels/lattice_triangulation.h"
 #include "kernels/launch.h"
+#include "kernels/loop_graph.h"
 #include "kernels/refine_level.h"
 #include "kernels/scan.h"
-#include "kernels/step_graph.h"
 
 namespace meshd {
 
@@ -148,7 +148,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   gpu::FlipLists flip_lists;
   DeviceBuffer<gpu::FlipBatch> flip_batch;     // one
-  std::unique_ptr<gpu::FlipGraph> flip_graph;  // null: the rounds launched one by one
+  std::unique_ptr<gpu::LoopGraph> flip_graph;  // null: the rounds launched one by one
   PinnedValue<gpu::FlipBatch> h_flip;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
@@ -160,7 +160,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<StepSums> step_partial;
   int64_t step_wave = 1;                       // move_nodes_wave
   DeviceBuffer<gpu::StepBatch> batch;          // one, for the step graph
-  std::unique_ptr<gpu::StepGraph> step_graph;  // null: the step's kernels launched one by one
+  std::unique_ptr<gpu::LoopGraph> step_graph;  // null: the step's kernels launched one by one
   DeviceBuffer<gpu::TopologyCounters> counters;
   DeviceBuffer<unsigned long long> h_min_bits;
   DeviceBuffer<uint8_t> temp;
@@ -869,8 +869,21 @@ void GpuEngine::set_step_graph(bool on) {
     s.step_graph.reset();
     s.flip_graph.reset();
   } else if (!s.step_graph) {
-    s.step_graph = std::make_unique<gpu::StepGraph>(s.batch.data(), s.step_wave, s.stream);
-    s.flip_graph = std::make_unique<gpu::FlipGraph>(s.flip_batch.data(), s.step_wave, s.stream);
+    gpu::StepBatch* batch = s.batch.data();
+    gpu::FlipBatch* flips = s.flip_batch.data();
+    const int64_t wave = s.step_wave;
+    s.step_graph = std::make_unique<gpu::LoopGraph>(
+        [&](const cudaGraphConditionalHandle& more, cudaStream_t stream) {
+          gpu::launch_move_nodes(batch, wave, stream);
+          gpu::launch_finish_step(batch, &more, stream);
+        },
+        s.stream);
+    s.flip_graph = std::make_unique<gpu::LoopGraph>(
+        [&](const cudaGraphConditionalHandle& more, cudaStream_t stream) {
+          gpu::launch_flip_candidates(flips, wave, stream);
+          gpu::launch_flips(flips, wave, &more, stream);
+        },
+        s.stream);
   }
 }
 

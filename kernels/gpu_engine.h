@@ -55,7 +55,7 @@ class GpuEngine final : public Engine {
   // the CPU engine does (its last bits differ all the same: its sums run in another order).
   void set_lagged_scale(bool on);
 
-  // The step as a CUDA graph that runs up to 32 steps per host round trip (step_graph.h), and a
+  // The step as a CUDA graph that runs up to 32 steps per host round trip (loop_graph.h), and a
   // repair's flip rounds as one that runs them until they settle (flip_round.h): the default,
   // unless the environment sets MESHD_GPU_STEP_GRAPH=0. Otherwise their kernels are launched one
   // by one, one step or eight rounds per round trip (for comparison, and for tools that cannot

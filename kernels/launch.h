@@ -132,9 +132,9 @@ struct MoveArgs {
 // every run on one kind of GPU.
 int64_t move_nodes_wave(int device);
 
-// A run of steps on the device, in device memory: step_graph.h runs move_nodes and finish_step
-// in a loop until finish_step says stop, with no host round trip in between. The host writes
-// everything before `count` and sets count to 0; finish_step counts the steps, writes their
+// A run of steps on the device, in device memory: the step graph (loop_graph.h) runs move_nodes and
+// finish_step in a loop until finish_step says stop, with no host round trip in between. The host
+// writes everything before `count` and sets count to 0; finish_step counts the steps, writes their
 // results and swaps args.p and args.p_next after each, so that the next step starts from this
 // one's positions.
 constexpr int kMaxBatchSteps = 32;

@@ -49,14 +49,8 @@ Triangulation complete_on_device(const std::vector<Vec2>& p, const Triangulation
   nbrs.upload(reinterpret_cast<const gpu::Tri*>(partial.neighbors.data()), partial.neighbors.size(),
               stream);
   gpu::cut_folds(points.span(), tris, nbrs, scratch, temp, stream);
-  Triangulation out;
-  if (!gpu::complete_gaps(points.span(), nfix, tris, nbrs, scratch, temp, stream)) return out;
-  out.triangles.resize(tris.size());
-  out.neighbors.resize(nbrs.size());
-  tris.download(reinterpret_cast<gpu::Tri*>(out.triangles.data()), stream);
-  nbrs.download(reinterpret_cast<gpu::Tri*>(out.neighbors.data()), stream);
-  EXPECT_EQ(cudaStreamSynchronize(stream), cudaSuccess);
-  return out;
+  if (!gpu::complete_gaps(points.span(), nfix, tris, nbrs, scratch, temp, stream)) return {};
+  return testing::download_triangulation(tris, nbrs, stream);
 }
 
 TEST(GpuCompleteGaps, AHoleAndHullPocketsFillAsOnTheHost) {

@@ -1,6 +1,6 @@
 // What the GPU-vs-CPU agreement tests share: the skip where no GPU is visible, random points to
-// start from, the gaps between their points after a step, and the whole-mesh comparison of the
-// two engines.
+// start from, the gaps between their points after a step, the whole-mesh comparison of the two
+// engines, and a triangulation read back from the device.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,12 +12,15 @@
 #include <random>
 #include <vector>
 
+#include "core/delaunay/delaunay.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/engine.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/validity.h"
+#include "kernels/device_buffer.h"
 #include "kernels/gpu_engine.h"
+#include "kernels/launch.h"
 
 #define SKIP_WITHOUT_GPU() \
   if (meshd::gpu_device_count() == 0) GTEST_SKIP() << "no CUDA device visible: GPU tests skipped"
@@ -77,6 +80,19 @@ inline void expect_meshes_agree(const MeshResult& rc, const MeshResult& rg) {
   EXPECT_GE(rg.quality.q_min, rc.quality.q_min - 0.05);
   EXPECT_NEAR(mesh_area(rg.mesh), mesh_area(rc.mesh), 0.005 * mesh_area(rc.mesh));
   EXPECT_TRUE(rg.stats.converged);
+}
+
+// The device's triangles and their links, as the host's Triangulation (the same layout).
+inline Triangulation download_triangulation(const gpu::DeviceBuffer<gpu::Tri>& tris,
+                                            const gpu::DeviceBuffer<gpu::Tri>& nbrs,
+                                            cudaStream_t stream) {
+  Triangulation out;
+  out.triangles.resize(tris.size());
+  out.neighbors.resize(nbrs.size());
+  tris.download(reinterpret_cast<gpu::Tri*>(out.triangles.data()), stream);
+  nbrs.download(reinterpret_cast<gpu::Tri*>(out.neighbors.data()), stream);
+  EXPECT_EQ(cudaStreamSynchronize(stream), cudaSuccess);
+  return out;
 }
 
 }  // namespace meshd::testing

@@ -36,16 +36,10 @@ Triangulation triangulate_on_device(const InitialGrid& grid, const std::vector<u
   d_kept.upload(kept.data(), kept.size(), stream);
   d_position.upload(position.data(), position.size(), stream);
   points.upload(p.data(), p.size(), stream);
-  Triangulation out;
   if (!gpu::lattice_triangulation(grid, d_kept.span(), d_position.span(), nfix, points.span(), tris,
                                   nbrs, scratch, gaps, temp, stream))
-    return out;
-  out.triangles.resize(tris.size());
-  out.neighbors.resize(nbrs.size());
-  tris.download(reinterpret_cast<gpu::Tri*>(out.triangles.data()), stream);
-  nbrs.download(reinterpret_cast<gpu::Tri*>(out.neighbors.data()), stream);
-  EXPECT_EQ(cudaStreamSynchronize(stream), cudaSuccess);
-  return out;
+    return {};
+  return testing::download_triangulation(tris, nbrs, stream);
 }
 
 TEST(GpuLatticeTriangulation, TheSameTrianglesAndLinksAsTheHost) {
