@@ -70,11 +70,7 @@ struct QualityOp {
   }
 };
 
-__device__ QualitySums no_triangles() {
-  QualitySums s{0.0, INFINITY, 180.0, {}};
-  for (int k = 0; k < kQualityBins; ++k) s.histogram[k] = 0;
-  return s;
-}
+__device__ QualitySums no_triangles() { return {0.0, INFINITY, 180.0, {}}; }
 
 __global__ void __launch_bounds__(kBlock)
     sum_quality(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,

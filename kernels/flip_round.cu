@@ -189,6 +189,15 @@ __global__ void close_round(FlipBatch* bp, bool in_graph, cudaGraphConditionalHa
   }
 }
 
+// Both kinds of round open and test alike; a round the host drives opens afresh.
+void launch_round_candidates(FlipBatch* batch, int64_t blocks, bool host_driven,
+                             cudaStream_t stream) {
+  open_round<<<1, 1, 0, stream>>>(batch, host_driven);
+  MESHD_CHECK_LAUNCH("open_round");
+  test_edges<<<blocks, kBlock, 0, stream>>>(batch);
+  MESHD_CHECK_LAUNCH("test_edges");
+}
+
 }  // namespace
 
 void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream) {
@@ -201,17 +210,11 @@ void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream) {
 }
 
 void launch_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
-  open_round<<<1, 1, 0, stream>>>(batch, false);
-  MESHD_CHECK_LAUNCH("open_round");
-  test_edges<<<blocks, kBlock, 0, stream>>>(batch);
-  MESHD_CHECK_LAUNCH("test_edges");
+  launch_round_candidates(batch, blocks, false, stream);
 }
 
 void launch_full_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
-  open_round<<<1, 1, 0, stream>>>(batch, true);
-  MESHD_CHECK_LAUNCH("open_round");
-  test_edges<<<blocks, kBlock, 0, stream>>>(batch);
-  MESHD_CHECK_LAUNCH("test_edges");
+  launch_round_candidates(batch, blocks, true, stream);
 }
 
 void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaStream_t stream) {

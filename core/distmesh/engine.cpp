@@ -23,8 +23,7 @@ void Engine::read_mesh(MeshCopy& copy) {
   read_points(copy.points);
   read_triangles(copy.triangles);
   copy.boundary = boundary_half_edges(copy.triangles);
-  copy.below_known = false;
-  copy.below.clear();
+  copy.below.reset();
   copy.tidy = false;
 }
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/common/vec2.h"
@@ -45,10 +46,9 @@ struct MeshCopy {
   std::vector<Vec2> points;                       // #N, fixed first
   std::vector<std::array<int32_t, 3>> triangles;  // #M, the kept triangles
   std::vector<int32_t> boundary;  // boundary_half_edges(triangles) (core/mesh/boundary.h)
-  // When `below_known`: the triangles, increasing, that the worst-element optimisation starts
-  // from (optimize_worst.h), so that it need not measure all of them.
-  bool below_known = false;
-  std::vector<int32_t> below;
+  // Where the engine knows them: the triangles, increasing, that the worst-element optimisation
+  // starts from (optimize_worst.h), so that it need not measure all of them.
+  std::optional<std::vector<int32_t>> below;
   // Every point is a corner of a triangle and every triangle turns counter-clockwise: assemble_mesh
   // has nothing to renumber or turn.
   bool tidy = false;

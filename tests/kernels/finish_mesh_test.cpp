@@ -61,7 +61,7 @@ TEST(GpuFinish, TheDevicesCopyMatchesTheHostsDefinitions) {
     EXPECT_EQ(copy.boundary, boundary_half_edges(copy.triangles)) << id;
     EXPECT_FALSE(copy.boundary.empty()) << id;
 
-    ASSERT_TRUE(copy.below_known) << id;
+    ASSERT_TRUE(copy.below.has_value()) << id;
     std::vector<int32_t> below;
     std::vector<char> used(copy.points.size(), 0);
     bool turned = false;
@@ -73,7 +73,7 @@ TEST(GpuFinish, TheDevicesCopyMatchesTheHostsDefinitions) {
       turned |= cross(b - a, d - a) < 0.0;
       for (int32_t k : v) used[k] = 1;
     }
-    EXPECT_EQ(copy.below, below) << id;
+    EXPECT_EQ(*copy.below, below) << id;
     EXPECT_FALSE(below.empty()) << id << ": the test no longer exercises the threshold";
     const bool all_used = std::find(used.begin(), used.end(), 0) == used.end();
     EXPECT_EQ(copy.tidy, all_used && !turned) << id;
@@ -83,7 +83,7 @@ TEST(GpuFinish, TheDevicesCopyMatchesTheHostsDefinitions) {
     expect_same_quality(gpu.measure_quality(mesh, false), summarize_quality(mesh), id);
     std::vector<Vec2> points = copy.points;
     const int64_t moves =
-        optimize_worst_elements(c, points, copy.triangles, copy.boundary, &copy.below);
+        optimize_worst_elements(c, points, copy.triangles, copy.boundary, &*copy.below);
     ASSERT_GT(moves, 0) << id;
     mesh = assemble_mesh(c, points, copy.triangles, copy.boundary, copy.tidy);
     expect_same_quality(gpu.measure_quality(mesh, true), summarize_quality(mesh),
