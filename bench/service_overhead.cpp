@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
   try {
     const meshd::Backend kind = opt.backend == "gpu" ? meshd::Backend::kGpu : meshd::Backend::kCpu;
     const meshd::WorkerEngineFactory factory = kind == meshd::Backend::kGpu
-                                                   ? meshd::gpu_engine_factory(0)
+                                                   ? meshd::gpu_engine_factory(0, opt.threads)
                                                    : meshd::cpu_engine_factory(opt.threads);
     const auto engine = factory();
     meshd::ServerOptions options;

@@ -62,6 +62,11 @@ class GpuEngine final : public Engine {
   // follow a graph).
   void set_step_graph(bool on);
 
+  // The host's threads for its share of the finish (kept by reference; null, the default: the
+  // caller's thread alone).
+  void set_host_pool(ThreadPool* pool) { host_pool_ = pool; }
+  ThreadPool* host_pool() override { return host_pool_; }
+
   const char* name() const override { return "gpu"; }
   int64_t initialize(const CompiledProblem& problem) override;
   int64_t load_points(const CompiledProblem& problem, const std::vector<Vec2>& points) override;
@@ -88,6 +93,7 @@ class GpuEngine final : public Engine {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  ThreadPool* host_pool_ = nullptr;
 };
 
 }  // namespace meshd

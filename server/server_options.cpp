@@ -206,14 +206,18 @@ std::vector<WorkerSpec> workers_for(const ServerOptions& o) {
     throw Error(ErrorCode::kUnavailable, "--backend",
                 "--backend gpu, but no GPU is visible (or this build has no GPU engine)");
   }
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  // The host's share of a GPU job (the worst-element optimisation) on the cores shared among
+  // the GPU workers.
+  const unsigned gpu_host_threads =
+      gpus == 0 ? 1u : std::max(1u, cores / static_cast<unsigned>(gpus * o.gpu_workers));
   for (int d = 0; d < gpus; ++d) {
     for (int k = 0; k < o.gpu_workers; ++k) {
       const std::string name =
           "gpu" + std::to_string(d) + (o.gpu_workers > 1 ? "." + std::to_string(k) : std::string());
-      out.push_back({name, Backend::kGpu, gpu_engine_factory(d)});
+      out.push_back({name, Backend::kGpu, gpu_engine_factory(d, gpu_host_threads)});
     }
   }
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const unsigned threads = o.cpu_threads > 0
                                ? o.cpu_threads
                                : std::max(1u, cores / static_cast<unsigned>(o.cpu_workers));

@@ -29,9 +29,11 @@ class CpuWorkerEngine final : public WorkerEngine {
 #ifdef MESHD_HAVE_CUDA
 class GpuWorkerEngine final : public WorkerEngine {
  public:
-  explicit GpuWorkerEngine(int device)
-      : engine_(device),
+  GpuWorkerEngine(int device, unsigned host_threads)
+      : host_pool_(host_threads),
+        engine_(device),
         name_(gpu_device_name(device) + " (device " + std::to_string(device) + ")") {
+    engine_.set_host_pool(&host_pool_);
     engine_.warm_up();
   }
   Engine& engine() override { return engine_; }
@@ -40,6 +42,7 @@ class GpuWorkerEngine final : public WorkerEngine {
   int64_t device_memory_bytes() const override { return gpu_memory_in_use(engine_.device()); }
 
  private:
+  ThreadPool host_pool_;
   GpuEngine engine_;
   std::string name_;
 };
@@ -59,11 +62,12 @@ int usable_gpu_count() {
 #endif
 }
 
-WorkerEngineFactory gpu_engine_factory(int device) {
+WorkerEngineFactory gpu_engine_factory(int device, unsigned host_threads) {
 #ifdef MESHD_HAVE_CUDA
-  return [device] { return std::make_unique<GpuWorkerEngine>(device); };
+  return [device, host_threads] { return std::make_unique<GpuWorkerEngine>(device, host_threads); };
 #else
   (void)device;
+  (void)host_threads;
   throw Error(ErrorCode::kUnavailable, "backend", "this build of meshd has no GPU engine");
 #endif
 }

@@ -31,8 +31,9 @@ WorkerEngineFactory cpu_engine_factory(unsigned threads);
 // CUDA devices this build can use: 0 when built without CUDA or when none is visible.
 int usable_gpu_count();
 
-// The GPU engine on `device`; its context is created and its modules loaded when built. Throws
-// Error(kUnavailable) when this build has no GPU engine.
-WorkerEngineFactory gpu_engine_factory(int device);
+// The GPU engine on `device`, with a pool of `host_threads` threads for the host's share of its
+// jobs; its context is created and its modules loaded when built. Throws Error(kUnavailable)
+// when this build has no GPU engine.
+WorkerEngineFactory gpu_engine_factory(int device, unsigned host_threads);
 
 }  // namespace meshd

@@ -30,6 +30,7 @@ class CpuEngine final : public Engine {
   int64_t remove_crowded_points(int64_t max_removed) override;
   StepResult move_points() override;
   void remove_points(const std::vector<int32_t>& indices) override;
+  ThreadPool* host_pool() override { return &pool_; }
   int64_t node_count() const override { return static_cast<int64_t>(p_.size()); }
   void read_points(std::vector<Vec2>& points) override { points = p_; }
   void read_triangles(std::vector<std::array<int32_t, 3>>& triangles) override {

@@ -121,7 +121,7 @@ class Loop {
       const auto t = Clock::now();
       s.optimized_moves =
           optimize_worst_elements(problem_, copy.points, copy.triangles, copy.boundary,
-                                  copy.below ? &*copy.below : nullptr);
+                                  copy.below ? &*copy.below : nullptr, engine_.host_pool());
       s.t_cleanup += seconds_since(t);
     }
     result.mesh = assemble_mesh(problem_, std::move(copy.points), std::move(copy.triangles),

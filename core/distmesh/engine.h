@@ -17,6 +17,8 @@
 
 namespace meshd {
 
+class ThreadPool;
+
 // Nodes within this distance of the boundary (times h0) count as boundary nodes for the
 // triangulation repair: a kept triangle of three of them that turns over is a boundary sliver
 // collapsing onto a convex curve, which the repair drops instead of rebuilding (lawson_repair.h).
@@ -111,6 +113,10 @@ class Engine {
   // optimisation moved some of its points (`moved`). By default summarize_quality on the host; the
   // GPU engine measures a tidy copy's triangles where they are.
   virtual QualityStats measure_quality(const Mesh& mesh, bool moved);
+
+  // Threads for the host's share of the finish (the worst-element optimisation); null: the
+  // caller's thread alone.
+  virtual ThreadPool* host_pool() { return nullptr; }
 
   virtual int64_t node_count() const = 0;
   virtual void read_points(std::vector<Vec2>& points) = 0;

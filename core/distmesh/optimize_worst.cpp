@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
+#include "core/common/thread_pool.h"
 #include "core/geometry/projection.cuh"
 #include "core/mesh/boundary.h"
 #include "core/mesh/quality.h"
@@ -39,8 +41,9 @@ class Optimizer {
  public:
   Optimizer(const CompiledProblem& problem, std::vector<Vec2>& points,
             const std::vector<std::array<int32_t, 3>>& triangles,
-            const std::vector<int32_t>& boundary)
-      : fd_(problem.geometry.view()),
+            const std::vector<int32_t>& boundary, ThreadPool* pool)
+      : pool_(pool),
+        fd_(problem.geometry.view()),
         h0_(problem.h0),
         deps_(problem.params.deps * problem.h0),
         nfix_(static_cast<int32_t>(problem.fixed_points.size())),
@@ -61,17 +64,19 @@ class Optimizer {
       for (int32_t t : *below) good[t] = 0;
     int64_t moves = snap_to_boundary(good);
     for (int pass = 0; pass < kPasses; ++pass) {
+      const std::vector<int32_t> nodes = nodes_of_bad_triangles(good);
       int64_t pass_moves = 0;
-      for (size_t t = 0; t < t_.size(); ++t) {
-        if (good[t]) continue;
-        if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) {
-          good[t] = 1;
-          continue;
-        }
-        for (int32_t v : t_[t]) {
-          if (v < nfix_ || !optimize_node(v)) continue;
+      // Nodes of one colour share no triangle, so each one's star holds none of the others: they
+      // move in parallel, and the result is the same for any number of threads.
+      for (const std::vector<int32_t>& group : colour_groups(nodes)) {
+        std::vector<char> moved(group.size(), 0);
+        for_ranges(group.size(), kNodesPerChunk, [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) moved[i] = optimize_node(group[i]);
+        });
+        for (size_t i = 0; i < group.size(); ++i) {
+          if (!moved[i]) continue;
           ++pass_moves;
-          mark_star(v, good);
+          mark_star(group[i], good);
         }
       }
       moves += pass_moves;
@@ -87,20 +92,86 @@ class Optimizer {
   // the Delaunay edge across the corner is dropped with its triangle, and the node, pushed
   // inward by both, settles up to half an edge inside.
   int64_t snap_to_boundary(std::vector<char>& good) {
+    // Where each node would go (the distance and the projection, the costly part) depends on that
+    // node alone: found in parallel. Whether it goes depends on its neighbours: decided in order.
+    const int32_t n = static_cast<int32_t>(p_.size());
+    std::vector<Vec2> target(n);
+    std::vector<char> off(n, 0);
+    for_ranges(n - nfix_, kNodesPerChunk * 16, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const int32_t v = nfix_ + static_cast<int32_t>(i);
+        if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
+        target[v] = project_to_boundary(fd_, p_[v], deps_);
+        off[v] = std::fabs(eval_sdf(fd_, target[v])) <= kSnapTolerance * h0_;
+      }
+    });
     int64_t moves = 0;
-    for (int32_t v = nfix_; v < static_cast<int32_t>(p_.size()); ++v) {
-      if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
-      const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
-      if (std::fabs(eval_sdf(fd_, x)) > kSnapTolerance * h0_) continue;
+    for (int32_t v = nfix_; v < n; ++v) {
+      if (!off[v]) continue;
       // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
       // flattens that triangle, to a round-off area of either sign that no later move undoes.
-      const double before = star_quality(v, p_[v]), after = star_quality(v, x);
+      const double before = star_quality(v, p_[v]), after = star_quality(v, target[v]);
       if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
-      p_[v] = x;
+      p_[v] = target[v];
       mark_star(v, good);
       ++moves;
     }
     return moves;
+  }
+
+  // The free nodes, increasing, of the triangles not known to be good that measure under the
+  // threshold; the others become good.
+  std::vector<int32_t> nodes_of_bad_triangles(std::vector<char>& good) {
+    const size_t m = t_.size();
+    std::vector<std::vector<int32_t>> found(ThreadPool::chunk_count(m, kTrianglesPerChunk));
+    for_chunks(m, kTrianglesPerChunk, [&](size_t chunk, size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        if (good[t]) continue;
+        if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) {
+          good[t] = 1;
+          continue;
+        }
+        for (int32_t v : t_[t])
+          if (v >= nfix_) found[chunk].push_back(v);
+      }
+    });
+    std::vector<int32_t> nodes;
+    for (const auto& f : found) nodes.insert(nodes.end(), f.begin(), f.end());
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    return nodes;
+  }
+
+  // `nodes` (increasing) in groups of which no two share a triangle: each node, in order, takes
+  // the first group that none of its neighbours already took.
+  std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
+    std::vector<int32_t> colour(p_.size(), -1);
+    std::vector<std::vector<int32_t>> groups;
+    std::vector<char> taken;
+    for (int32_t v : nodes) {
+      taken.assign(groups.size() + 1, 0);
+      for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k)
+        for (int32_t u : t_[stars_.tri[k]])
+          if (colour[u] >= 0) taken[colour[u]] = 1;
+      const int32_t c =
+          static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+      if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
+      groups[c].push_back(v);
+      colour[v] = c;
+    }
+    return groups;
+  }
+
+  void for_ranges(size_t n, size_t chunk, const std::function<void(size_t, size_t)>& fn) {
+    for_chunks(n, chunk, [&](size_t, size_t begin, size_t end) { fn(begin, end); });
+  }
+  void for_chunks(size_t n, size_t chunk, const std::function<void(size_t, size_t, size_t)>& fn) {
+    if (pool_ != nullptr) {
+      pool_->for_chunks(n, chunk, fn);
+      return;
+    }
+    for (size_t c = 0; c < ThreadPool::chunk_count(n, chunk); ++c)
+      fn(c, c * chunk, std::min(n, (c + 1) * chunk));
   }
 
   // v moved: the triangles around it must be measured again.
@@ -182,6 +253,10 @@ class Optimizer {
   static constexpr double kSnapTolerance = 1e-4;
   // A snap may lower the worst quality in the node's star to this, or to what it was, not below.
   static constexpr double kSnapMinQuality = 0.1;
+  // Nodes per task in a parallel loop: a boundary node's search costs a few hundred distances.
+  static constexpr size_t kNodesPerChunk = 16;
+  static constexpr size_t kTrianglesPerChunk = 4096;
+  ThreadPool* pool_;
   ProgramView fd_;
   double h0_;
   double deps_;
@@ -197,8 +272,8 @@ class Optimizer {
 int64_t optimize_worst_elements(const CompiledProblem& problem, std::vector<Vec2>& points,
                                 const std::vector<std::array<int32_t, 3>>& triangles,
                                 const std::vector<int32_t>& boundary,
-                                const std::vector<int32_t>* below) {
-  return Optimizer(problem, points, triangles, boundary).run(below);
+                                const std::vector<int32_t>* below, ThreadPool* pool) {
+  return Optimizer(problem, points, triangles, boundary, pool).run(below);
 }
 
 }  // namespace meshd

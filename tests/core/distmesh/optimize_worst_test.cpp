@@ -84,6 +84,31 @@ TEST(OptimizeWorst, StartingFromTheTrianglesBelowTheThresholdMovesTheSameNodes) 
   }
 }
 
+// Nodes that share no triangle move at once on the pool's threads: the same moves for any number
+// of threads, and every triangle still turns left.
+TEST(OptimizeWorst, TheSameMovesOnAnyNumberOfThreads) {
+  for (const std::string id : {"G2", "G5"}) {
+    const CompiledProblem problem = compile_problem(testing::benchmark_problem(id, 0.05));
+    const MeshCopy copy = early_mesh(id);
+    std::vector<Vec2> alone = copy.points;
+    const int64_t a = optimize_worst_elements(problem, alone, copy.triangles, copy.boundary);
+    EXPECT_GT(a, 0) << id;
+    for (unsigned threads : {2u, 5u}) {
+      ThreadPool pool(threads);
+      std::vector<Vec2> pooled = copy.points;
+      const int64_t b =
+          optimize_worst_elements(problem, pooled, copy.triangles, copy.boundary, nullptr, &pool);
+      EXPECT_EQ(a, b) << id << ", " << threads << " threads";
+      for (size_t i = 0; i < alone.size(); ++i) {
+        ASSERT_EQ(alone[i].x, pooled[i].x) << id << ", node " << i;
+        ASSERT_EQ(alone[i].y, pooled[i].y) << id << ", node " << i;
+      }
+    }
+    for (const auto& t : copy.triangles)
+      EXPECT_GT(oriented_radius_ratio(alone[t[0]], alone[t[1]], alone[t[2]]), 0.0) << id;
+  }
+}
+
 // A triangle above the threshold until the snap puts its sagging corner onto the boundary, where
 // it falls under it (q 0.91, then 0.74): it must be optimised as if every triangle were measured.
 TEST(OptimizeWorst, StartingFromTheTrianglesBelowAlsoMeasuresAroundSnappedNodes) {
