@@ -175,7 +175,7 @@ __global__ void close_round(FlipBatch* bp, bool in_graph, cudaGraphConditionalHa
   FlipBatch& b = *bp;
   TopologyCounters* c = b.counters;
   if (in_graph && thread_index() == 0) {
-    const bool again = !c->settled && c->candidates > 0 && ++b.rounds < kGraphFlipRounds;
+    const bool again = !c->settled && c->candidates > 0 && ++b.rounds < b.rounds_per_launch;
     if (!again) b.rounds = 0;
     cudaGraphSetConditional(more, again);
   }

@@ -41,6 +41,7 @@ struct FlipBatch {
   DeviceSpan<int32_t> undecided;      // the round's undecided edge ids (up to its size)
   TopologyCounters* counters;
   int32_t *work[2], *work_stamp[2], *voted, *voted_stamp;  // FlipLists
+  int32_t rounds_per_launch;  // the graph's loop ends after this many rounds (the host relaunches)
   int32_t full;  // the next round tests every edge (the first of a repair, or one the host drives)
   // Written by the kernels only: the host's copy of the fields above ends here.
   int32_t round;       // the current round's number, counted on the device for the engine's life
@@ -48,7 +49,9 @@ struct FlipBatch {
   int32_t rounds;      // rounds the graph's loop has run since its launch
 };
 
-// Rounds one launch of the graph may run (a repair that needs more is pathological).
+// Rounds one launch of the graph runs at most, unless told otherwise: a repair that needs more
+// is launched again (a slow cascade along a long chain flips one edge a round: G5's finest level
+// at 16M nodes needed more than 200).
 constexpr int32_t kGraphFlipRounds = 200;
 
 // Sizes the lists for #M triangles and forgets every stamp: at the start of a repair.
@@ -65,7 +68,7 @@ void launch_full_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t 
 void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaStream_t stream);
 // The second half: the flips, the links, the votes reset and the next round's list. In the
 // graph (`more` given), sets its loop condition: whether the round found candidates, within
-// kGraphFlipRounds rounds of the launch.
+// rounds_per_launch rounds of the launch.
 void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
                   cudaStream_t stream);
 

@@ -39,8 +39,8 @@ namespace {
 constexpr int32_t kMaxUndecided = 4096;
 // Flip rounds launched one by one (without the graph) between two reads of the counters.
 constexpr int kRoundsPerBatch = 8;
-// A repair that needs more batches of rounds than this (or, with the graph, more than
-// gpu::kGraphFlipRounds rounds at once) is pathological: rebuild instead.
+// A repair that needs more batches of rounds than this (kRoundsPerBatch rounds each, or with the
+// graph up to flip_rounds_per_launch) is pathological: rebuild instead.
 constexpr int kMaxFlipLaunches = 25;
 
 // Pinned host memory for the few scalars read every step.
@@ -149,6 +149,7 @@ struct GpuEngine::Impl {
   gpu::FlipLists flip_lists;
   DeviceBuffer<gpu::FlipBatch> flip_batch;     // one
   std::unique_ptr<gpu::LoopGraph> flip_graph;  // null: the rounds launched one by one
+  int32_t flip_rounds_per_launch = gpu::kGraphFlipRounds;
   PinnedValue<gpu::FlipBatch> h_flip;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
@@ -524,7 +525,6 @@ struct GpuEngine::Impl {
       const gpu::TopologyCounters rc = read_counters();
       if (rc.undecided > kMaxUndecided) return -1;
       if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
-      if (rc.candidates > 0 && flip_graph) return -1;  // kGraphFlipRounds rounds were not enough
       if (rc.undecided > 0) {
         // The rounds' lists are stale after their last flips: one round again, testing every
         // edge, with the host deciding what the filter could not.
@@ -559,6 +559,7 @@ struct GpuEngine::Impl {
     }
     b.voted = flip_lists.voted.data();
     b.voted_stamp = flip_lists.voted_stamp.data();
+    b.rounds_per_launch = flip_rounds_per_launch;
     b.full = 1;
     // The round counters after `full` belong to the device.
     MESHD_CUDA_CHECK(cudaMemcpyAsync(flip_batch.data(), &b, offsetof(gpu::FlipBatch, round),
@@ -945,6 +946,7 @@ QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {
 }
 
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
+void GpuEngine::set_flip_rounds_per_launch(int rounds) { impl_->flip_rounds_per_launch = rounds; }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 
 void GpuEngine::warm_up() {

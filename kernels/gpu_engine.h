@@ -61,6 +61,9 @@ class GpuEngine final : public Engine {
   // by one, one step or eight rounds per round trip (for comparison, and for tools that cannot
   // follow a graph).
   void set_step_graph(bool on);
+  // For tests: the flip graph's rounds per launch (gpu::kGraphFlipRounds by default), after
+  // which a repair that still finds candidates launches it again.
+  void set_flip_rounds_per_launch(int rounds);
 
   // The host's threads for its share of the finish (kept by reference; null, the default: the
   // caller's thread alone).

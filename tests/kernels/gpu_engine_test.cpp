@@ -270,6 +270,37 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
   EXPECT_GT(total_flips, 0) << "the test never exercised a flip";
 }
 
+// A repair whose rounds outlast one launch of the flip graph launches it again: with one round a
+// launch, every repair that flips needs several launches, and none may fall back to a rebuild.
+// The result is the triangulation CGAL builds from scratch, up to dropped boundary slivers.
+TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipGraphGoOn) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled("G2", 3000);
+  ThreadPool pool;
+  GpuEngine gpu(0);
+  gpu.set_flip_rounds_per_launch(1);
+  gpu.initialize(c);
+  gpu.retriangulate(true);
+  int64_t flips = 0;
+  for (int step = 0; step < 30; ++step) {
+    for (int i = 0; i < 3; ++i) gpu.move_points();
+    const TopologyStats tg = gpu.retriangulate(false);
+    EXPECT_FALSE(tg.repair_failed) << "step " << step;
+    flips += tg.flips;
+  }
+  EXPECT_GT(flips, 0) << "the test never exercised a flip";
+  std::vector<Vec2> pts;
+  Triangles t_gpu, t_cpu;
+  gpu.read_points(pts);
+  gpu.read_triangles(t_gpu);
+  CpuEngine cpu(pool);
+  cpu.load_points(c, pts);
+  cpu.retriangulate(true);
+  cpu.read_triangles(t_cpu);
+  EXPECT_NEAR(static_cast<double>(t_gpu.size()), static_cast<double>(t_cpu.size()),
+              0.01 * t_cpu.size());
+}
+
 // A multilevel step: a coarse mesh relaxed at 2 h0 and split in four (refine.h). The device
 // refines it to the host's points, bit for bit and in the same order, and flips its split
 // triangles, with no rebuild, to the triangulation that CGAL builds from scratch on them.
