@@ -63,4 +63,14 @@ void ThreadPool::for_chunks(size_t n, size_t chunk,
   job_ = nullptr;
 }
 
+void for_chunks(ThreadPool* pool, size_t n, size_t chunk,
+                const std::function<void(size_t, size_t, size_t)>& fn) {
+  if (pool != nullptr) {
+    pool->for_chunks(n, chunk, fn);
+    return;
+  }
+  for (size_t c = 0; c < ThreadPool::chunk_count(n, chunk); ++c)
+    fn(c, c * chunk, std::min(n, (c + 1) * chunk));
+}
+
 }  // namespace meshd

@@ -45,4 +45,8 @@ class ThreadPool {
   bool stop_ = false;
 };
 
+// pool->for_chunks, or the same chunks in order on the caller's thread when there is no pool.
+void for_chunks(ThreadPool* pool, size_t n, size_t chunk,
+                const std::function<void(size_t, size_t, size_t)>& fn);
+
 }  // namespace meshd

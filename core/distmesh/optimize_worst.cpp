@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
+#include <unordered_map>
+#include <utility>
 
 #include "core/common/thread_pool.h"
+#include "core/distmesh/star_table.h"
 #include "core/geometry/projection.cuh"
 #include "core/mesh/boundary.h"
 #include "core/mesh/quality.h"
@@ -14,28 +16,6 @@ namespace {
 
 constexpr int kPasses = 8;
 constexpr int kStepHalvings = 6;
-
-// Triangles around each node, as a CSR.
-struct Stars {
-  std::vector<int32_t> offset;  // #N + 1
-  std::vector<int32_t> tri;     // #3M
-};
-
-Stars build_stars(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
-  Stars s;
-  s.offset.assign(n + 1, 0);
-  for (const auto& t : triangles)
-    for (int32_t v : t) ++s.offset[v + 1];
-  for (size_t i = 0; i < n; ++i) s.offset[i + 1] += s.offset[i];
-  s.tri.resize(3 * triangles.size());
-  // offset[v] serves as v's fill cursor and ends at offset[v + 1]'s value: one shift puts it
-  // back, without a copy of the offsets.
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int32_t v : triangles[t]) s.tri[s.offset[v]++] = static_cast<int32_t>(t);
-  std::copy_backward(s.offset.begin(), s.offset.end() - 1, s.offset.end());
-  s.offset[0] = 0;
-  return s;
-}
 
 class Optimizer {
  public:
@@ -49,7 +29,7 @@ class Optimizer {
         nfix_(static_cast<int32_t>(problem.fixed_points.size())),
         p_(points),
         t_(triangles),
-        stars_(build_stars(points.size(), triangles)),
+        stars_(points.size(), triangles, pool),
         on_boundary_(points.size(), 0) {
     for (const auto& e : half_edge_ends(triangles, boundary))
       on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
@@ -65,12 +45,13 @@ class Optimizer {
     int64_t moves = snap_to_boundary(good);
     for (int pass = 0; pass < kPasses; ++pass) {
       const std::vector<int32_t> nodes = nodes_of_bad_triangles(good);
+      stars_.add(nodes);
       int64_t pass_moves = 0;
       // Nodes of one colour share no triangle, so each one's star holds none of the others: they
       // move in parallel, and the result is the same for any number of threads.
       for (const std::vector<int32_t>& group : colour_groups(nodes)) {
         std::vector<char> moved(group.size(), 0);
-        for_ranges(group.size(), kNodesPerChunk, [&](size_t begin, size_t end) {
+        for_chunks(pool_, group.size(), kNodesPerChunk, [&](size_t, size_t begin, size_t end) {
           for (size_t i = begin; i < end; ++i) moved[i] = optimize_node(group[i]);
         });
         for (size_t i = 0; i < group.size(); ++i) {
@@ -94,27 +75,32 @@ class Optimizer {
   int64_t snap_to_boundary(std::vector<char>& good) {
     // Where each node would go (the distance and the projection, the costly part) depends on that
     // node alone: found in parallel. Whether it goes depends on its neighbours: decided in order.
-    const int32_t n = static_cast<int32_t>(p_.size());
-    std::vector<Vec2> target(n);
-    std::vector<char> off(n, 0);
-    for_ranges(n - nfix_, kNodesPerChunk * 16, [&](size_t begin, size_t end) {
+    const size_t free_nodes = p_.size() - nfix_;
+    std::vector<std::vector<std::pair<int32_t, Vec2>>> found(
+        ThreadPool::chunk_count(free_nodes, kNodesPerSnapChunk));
+    for_chunks(pool_, free_nodes, kNodesPerSnapChunk, [&](size_t chunk, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         const int32_t v = nfix_ + static_cast<int32_t>(i);
         if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
-        target[v] = project_to_boundary(fd_, p_[v], deps_);
-        off[v] = std::fabs(eval_sdf(fd_, target[v])) <= kSnapTolerance * h0_;
+        const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
+        if (std::fabs(eval_sdf(fd_, x)) <= kSnapTolerance * h0_) found[chunk].push_back({v, x});
       }
     });
+    std::vector<int32_t> nodes;
+    for (const auto& f : found)
+      for (const auto& [v, x] : f) nodes.push_back(v);
+    stars_.add(nodes);
     int64_t moves = 0;
-    for (int32_t v = nfix_; v < n; ++v) {
-      if (!off[v]) continue;
-      // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
-      // flattens that triangle, to a round-off area of either sign that no later move undoes.
-      const double before = star_quality(v, p_[v]), after = star_quality(v, target[v]);
-      if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
-      p_[v] = target[v];
-      mark_star(v, good);
-      ++moves;
+    for (const auto& f : found) {
+      for (const auto& [v, x] : f) {
+        // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
+        // flattens that triangle, to a round-off area of either sign that no later move undoes.
+        const double before = star_quality(v, p_[v]), after = star_quality(v, x);
+        if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
+        p_[v] = x;
+        mark_star(v, good);
+        ++moves;
+      }
     }
     return moves;
   }
@@ -124,7 +110,7 @@ class Optimizer {
   std::vector<int32_t> nodes_of_bad_triangles(std::vector<char>& good) {
     const size_t m = t_.size();
     std::vector<std::vector<int32_t>> found(ThreadPool::chunk_count(m, kTrianglesPerChunk));
-    for_chunks(m, kTrianglesPerChunk, [&](size_t chunk, size_t begin, size_t end) {
+    for_chunks(pool_, m, kTrianglesPerChunk, [&](size_t chunk, size_t begin, size_t end) {
       for (size_t t = begin; t < end; ++t) {
         if (good[t]) continue;
         if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) {
@@ -145,16 +131,19 @@ class Optimizer {
   // `nodes` (increasing) in groups of which no two share a triangle: each node, in order, takes
   // the first group that none of its neighbours already took.
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    std::vector<int32_t> colour(p_.size(), -1);
+    std::unordered_map<int32_t, int32_t> colour;
+    colour.reserve(nodes.size());
     std::vector<std::vector<int32_t>> groups;
     std::vector<char> taken;
     for (int32_t v : nodes) {
       taken.assign(groups.size() + 1, 0);
-      for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k)
-        for (int32_t u : t_[stars_.tri[k]])
-          if (colour[u] >= 0) taken[colour[u]] = 1;
-      const int32_t c =
-          static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+      for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) {
+        for (int32_t u : t_[*t]) {
+          const auto it = colour.find(u);
+          if (it != colour.end()) taken[it->second] = 1;
+        }
+      }
+      const auto c = static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
       if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
       groups[c].push_back(v);
       colour[v] = c;
@@ -162,21 +151,9 @@ class Optimizer {
     return groups;
   }
 
-  void for_ranges(size_t n, size_t chunk, const std::function<void(size_t, size_t)>& fn) {
-    for_chunks(n, chunk, [&](size_t, size_t begin, size_t end) { fn(begin, end); });
-  }
-  void for_chunks(size_t n, size_t chunk, const std::function<void(size_t, size_t, size_t)>& fn) {
-    if (pool_ != nullptr) {
-      pool_->for_chunks(n, chunk, fn);
-      return;
-    }
-    for (size_t c = 0; c < ThreadPool::chunk_count(n, chunk); ++c)
-      fn(c, c * chunk, std::min(n, (c + 1) * chunk));
-  }
-
   // v moved: the triangles around it must be measured again.
   void mark_star(int32_t v, std::vector<char>& good) const {
-    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k) good[stars_.tri[k]] = 0;
+    for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) good[*t] = 0;
   }
 
   double quality(int32_t t) const {
@@ -189,8 +166,8 @@ class Optimizer {
     const Vec2 saved = p_[v];
     p_[v] = x;
     double worst = INFINITY;
-    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k)
-      worst = std::min(worst, quality(stars_.tri[k]));
+    for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t)
+      worst = std::min(worst, quality(*t));
     p_[v] = saved;
     return worst;
   }
@@ -198,8 +175,8 @@ class Optimizer {
   double mean_star_edge(int32_t v) const {
     double sum = 0.0;
     int count = 0;
-    for (int32_t k = stars_.offset[v]; k < stars_.offset[v + 1]; ++k) {
-      for (int32_t u : t_[stars_.tri[k]]) {
+    for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) {
+      for (int32_t u : t_[*t]) {
         if (u == v) continue;
         sum += norm(p_[u] - p_[v]);
         ++count;
@@ -255,6 +232,7 @@ class Optimizer {
   static constexpr double kSnapMinQuality = 0.1;
   // Nodes per task in a parallel loop: a boundary node's search costs a few hundred distances.
   static constexpr size_t kNodesPerChunk = 16;
+  static constexpr size_t kNodesPerSnapChunk = 256;
   static constexpr size_t kTrianglesPerChunk = 4096;
   ThreadPool* pool_;
   ProgramView fd_;
@@ -263,7 +241,7 @@ class Optimizer {
   int32_t nfix_;
   std::vector<Vec2>& p_;
   const std::vector<std::array<int32_t, 3>>& t_;
-  Stars stars_;
+  StarTable stars_;
   std::vector<char> on_boundary_;
 };
 
