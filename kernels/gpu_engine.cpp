@@ -143,7 +143,7 @@ struct GpuEngine::Impl {
   bool completion_failed = false;  // the last completion's checks failed: CGAL instead
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
-  DeviceBuffer<int32_t> vote, flipped_round, partner, position, kept_position, count, next;
+  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   gpu::FlipLists flip_lists;
@@ -174,19 +174,8 @@ struct GpuEngine::Impl {
   bool copy_tidy = false;
   PinnedValue<gpu::StepBatch> h_batch;
   PinnedValue<gpu::TopologyCounters> h_counters;
-  // The last entries of filter_and_bars' scans and of what they scanned: the totals.
-  struct ScanEnds {
-    int32_t bar_position, bar_count, kept_position;
-    uint8_t kept;
-  };
-  PinnedValue<ScanEnds> h_scan_ends;
 
   void sync() { MESHD_CUDA_CHECK(cudaStreamSynchronize(stream)); }
-  // Queues the copy of a[m - 1] to the host; valid after the next sync.
-  template <typename T>
-  void copy_last(const T* a, int64_t m, T* to) {
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(to, a + m - 1, sizeof(T), cudaMemcpyDeviceToHost, stream));
-  }
   void use_device() { MESHD_CUDA_CHECK(cudaSetDevice(device)); }
 
   void load_problem(const CompiledProblem& prob) {
@@ -619,19 +608,15 @@ struct GpuEngine::Impl {
     position.resize(m);
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
     gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
-    // The kept triangles (for the stats) are counted in the same read as the bars.
-    kept_position.resize(m);
-    gpu::exclusive_scan(keep.data(), kept_position.data(), m, temp, stream);
-    int64_t nb = 0, kept = 0;
+    int64_t nb = 0;
     if (m > 0) {
-      ScanEnds& last = *h_scan_ends.get();
-      copy_last(position.data(), m, &last.bar_position);
-      copy_last(count.data(), m, &last.bar_count);
-      copy_last(kept_position.data(), m, &last.kept_position);
-      copy_last(keep.data(), m, &last.kept);
+      int32_t last[2];
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[0], position.data() + m - 1, sizeof(int32_t),
+                                       cudaMemcpyDeviceToHost, stream));
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[1], count.data() + m - 1, sizeof(int32_t),
+                                       cudaMemcpyDeviceToHost, stream));
       sync();
-      nb = last.bar_position + last.bar_count;
-      kept = last.kept_position + last.kept;
+      nb = last[0] + last[1];
     }
     bars.resize(nb);
     scale_lagged_ok = false;
@@ -653,6 +638,13 @@ struct GpuEngine::Impl {
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
+    // Kept triangles, for the stats.
+    int64_t kept = 0;
+    if (m > 0) {
+      position.resize(m);
+      gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
+      kept = gpu::scan_total(position.data(), keep.data(), m, stream);
+    }
     TopologyStats stats;
     stats.triangles = kept;
     stats.bars = nb;
