@@ -685,6 +685,8 @@ GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_uniq
 GpuEngine::~GpuEngine() {
   if (impl_ && impl_->stream) {
     cudaSetDevice(impl_->device);
+    // The buffers are freed below: whatever the stream still holds must finish first.
+    cudaStreamSynchronize(impl_->stream);
     cudaStreamDestroy(impl_->stream);
   }
 }
