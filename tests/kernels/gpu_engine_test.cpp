@@ -221,6 +221,28 @@ TEST_P(GpuAgreement, ClearanceLeavesTheMeshBitForBit) {
                   generate_mesh(evaluated, second, nullptr, nullptr));
 }
 
+// The GPU engine's points and kept triangles, as many triangles as CGAL keeps when it
+// triangulates those points from scratch, up to the collapsed boundary slivers a repair drops.
+struct GpuMesh {
+  std::vector<Vec2> points;
+  Triangles triangles;
+};
+GpuMesh read_beside_cgal(const CompiledProblem& c, GpuEngine& gpu, ThreadPool& pool,
+                         const std::string& where) {
+  GpuMesh m;
+  gpu.read_points(m.points);
+  gpu.read_triangles(m.triangles);
+  CpuEngine cpu(pool);
+  cpu.load_points(c, m.points);
+  cpu.retriangulate(true);
+  Triangles t_cpu;
+  cpu.read_triangles(t_cpu);
+  EXPECT_NEAR(static_cast<double>(m.triangles.size()), static_cast<double>(t_cpu.size()),
+              0.01 * t_cpu.size())
+      << where;
+  return m;
+}
+
 // The repaired triangulation must be Delaunay: every kept triangle counter-clockwise and every
 // edge between two kept triangles locally Delaunay (exact predicates), with as many triangles as
 // CGAL's rebuild of the same points, up to the collapsed boundary slivers a repair drops.
@@ -238,17 +260,7 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
     if (tg.full) continue;
     ++repairs;
     total_flips += tg.flips;
-    std::vector<Vec2> pts;
-    Triangles t_gpu, t_cpu;
-    gpu.read_points(pts);
-    gpu.read_triangles(t_gpu);
-    CpuEngine cpu(pool);
-    cpu.load_points(c, pts);
-    cpu.retriangulate(true);
-    cpu.read_triangles(t_cpu);
-    EXPECT_NEAR(static_cast<double>(t_gpu.size()), static_cast<double>(t_cpu.size()),
-                0.01 * t_cpu.size())
-        << "step " << step;
+    const auto [pts, t_gpu] = read_beside_cgal(c, gpu, pool, "step " + std::to_string(step));
     std::map<std::array<int32_t, 2>, std::pair<int32_t, int32_t>>
         opposite;  // edge -> (tri, vertex)
     for (size_t t = 0; t < t_gpu.size(); ++t) {
@@ -289,16 +301,7 @@ TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipGraphGoOn) {
     flips += tg.flips;
   }
   EXPECT_GT(flips, 0) << "the test never exercised a flip";
-  std::vector<Vec2> pts;
-  Triangles t_gpu, t_cpu;
-  gpu.read_points(pts);
-  gpu.read_triangles(t_gpu);
-  CpuEngine cpu(pool);
-  cpu.load_points(c, pts);
-  cpu.retriangulate(true);
-  cpu.read_triangles(t_cpu);
-  EXPECT_NEAR(static_cast<double>(t_gpu.size()), static_cast<double>(t_cpu.size()),
-              0.01 * t_cpu.size());
+  read_beside_cgal(c, gpu, pool, "after the repairs");
 }
 
 // A multilevel step: a coarse mesh relaxed at 2 h0 and split in four (refine.h). The device
