@@ -47,7 +47,7 @@ void ThreadPool::for_chunks(size_t n, size_t chunk,
   if (n == 0) return;
   const size_t chunks = chunk_count(n, chunk);
   if (workers_.empty() || chunks == 1) {
-    for (size_t c = 0; c < chunks; ++c) fn(c, c * chunk, std::min(n, (c + 1) * chunk));
+    for_chunks_in_order(n, chunk, fn);
     return;
   }
   std::unique_lock lock(mutex_);
@@ -63,14 +63,17 @@ void ThreadPool::for_chunks(size_t n, size_t chunk,
   job_ = nullptr;
 }
 
+void ThreadPool::for_chunks_in_order(size_t n, size_t chunk,
+                                     const std::function<void(size_t, size_t, size_t)>& fn) {
+  for (size_t c = 0; c < chunk_count(n, chunk); ++c) fn(c, c * chunk, std::min(n, (c + 1) * chunk));
+}
+
 void for_chunks(ThreadPool* pool, size_t n, size_t chunk,
                 const std::function<void(size_t, size_t, size_t)>& fn) {
-  if (pool != nullptr) {
+  if (pool != nullptr)
     pool->for_chunks(n, chunk, fn);
-    return;
-  }
-  for (size_t c = 0; c < ThreadPool::chunk_count(n, chunk); ++c)
-    fn(c, c * chunk, std::min(n, (c + 1) * chunk));
+  else
+    ThreadPool::for_chunks_in_order(n, chunk, fn);
 }
 
 }  // namespace meshd

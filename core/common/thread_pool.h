@@ -29,6 +29,9 @@ class ThreadPool {
   void for_chunks(size_t n, size_t chunk, const std::function<void(size_t, size_t, size_t)>& fn);
 
   static size_t chunk_count(size_t n, size_t chunk) { return (n + chunk - 1) / chunk; }
+  // The same chunks in order on the caller's thread.
+  static void for_chunks_in_order(size_t n, size_t chunk,
+                                  const std::function<void(size_t, size_t, size_t)>& fn);
 
  private:
   void worker_loop();
@@ -48,5 +51,20 @@ class ThreadPool {
 // pool->for_chunks, or the same chunks in order on the caller's thread when there is no pool.
 void for_chunks(ThreadPool* pool, size_t n, size_t chunk,
                 const std::function<void(size_t, size_t, size_t)>& fn);
+
+// Calls fn(begin, end, out) for consecutive chunks of [0, n) as for_chunks does, each chunk
+// appending to its own list, and returns the lists joined in chunk order: the same result for
+// any number of threads.
+template <typename T, typename Fn>
+std::vector<T> gather_chunks(ThreadPool* pool, size_t n, size_t chunk, Fn&& fn) {
+  std::vector<std::vector<T>> found(ThreadPool::chunk_count(n, chunk));
+  for_chunks(pool, n, chunk, [&](size_t c, size_t begin, size_t end) { fn(begin, end, found[c]); });
+  size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  std::vector<T> out;
+  out.reserve(total);
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
 
 }  // namespace meshd

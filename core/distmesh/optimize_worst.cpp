@@ -75,32 +75,30 @@ class Optimizer {
   int64_t snap_to_boundary(std::vector<char>& good) {
     // Where each node would go (the distance and the projection, the costly part) depends on that
     // node alone: found in parallel. Whether it goes depends on its neighbours: decided in order.
-    const size_t free_nodes = p_.size() - nfix_;
-    std::vector<std::vector<std::pair<int32_t, Vec2>>> found(
-        ThreadPool::chunk_count(free_nodes, kNodesPerSnapChunk));
-    for_chunks(pool_, free_nodes, kNodesPerSnapChunk, [&](size_t chunk, size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        const int32_t v = nfix_ + static_cast<int32_t>(i);
-        if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_) continue;
-        const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
-        if (std::fabs(eval_sdf(fd_, x)) <= kSnapTolerance * h0_) found[chunk].push_back({v, x});
-      }
-    });
+    using Target = std::pair<int32_t, Vec2>;
+    const std::vector<Target> targets = gather_chunks<Target>(
+        pool_, p_.size() - nfix_, kNodesPerSnapChunk,
+        [&](size_t begin, size_t end, std::vector<Target>& out) {
+          for (size_t i = begin; i < end; ++i) {
+            const int32_t v = nfix_ + static_cast<int32_t>(i);
+            if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_)
+              continue;
+            const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
+            if (std::fabs(eval_sdf(fd_, x)) <= kSnapTolerance * h0_) out.push_back({v, x});
+          }
+        });
     std::vector<int32_t> nodes;
-    for (const auto& f : found)
-      for (const auto& [v, x] : f) nodes.push_back(v);
+    for (const auto& [v, x] : targets) nodes.push_back(v);
     stars_.add(nodes);
     int64_t moves = 0;
-    for (const auto& f : found) {
-      for (const auto& [v, x] : f) {
-        // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
-        // flattens that triangle, to a round-off area of either sign that no later move undoes.
-        const double before = star_quality(v, p_[v]), after = star_quality(v, x);
-        if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
-        p_[v] = x;
-        mark_star(v, good);
-        ++moves;
-      }
+    for (const auto& [v, x] : targets) {
+      // When the opposite edge of a triangle in v's star lies on the boundary too, the snap
+      // flattens that triangle, to a round-off area of either sign that no later move undoes.
+      const double before = star_quality(v, p_[v]), after = star_quality(v, x);
+      if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
+      p_[v] = x;
+      mark_star(v, good);
+      ++moves;
     }
     return moves;
   }
@@ -108,21 +106,19 @@ class Optimizer {
   // The free nodes, increasing, of the triangles not known to be good that measure under the
   // threshold; the others become good.
   std::vector<int32_t> nodes_of_bad_triangles(std::vector<char>& good) {
-    const size_t m = t_.size();
-    std::vector<std::vector<int32_t>> found(ThreadPool::chunk_count(m, kTrianglesPerChunk));
-    for_chunks(pool_, m, kTrianglesPerChunk, [&](size_t chunk, size_t begin, size_t end) {
-      for (size_t t = begin; t < end; ++t) {
-        if (good[t]) continue;
-        if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) {
-          good[t] = 1;
-          continue;
-        }
-        for (int32_t v : t_[t])
-          if (v >= nfix_) found[chunk].push_back(v);
-      }
-    });
-    std::vector<int32_t> nodes;
-    for (const auto& f : found) nodes.insert(nodes.end(), f.begin(), f.end());
+    std::vector<int32_t> nodes =
+        gather_chunks<int32_t>(pool_, t_.size(), kTrianglesPerChunk,
+                               [&](size_t begin, size_t end, std::vector<int32_t>& out) {
+                                 for (size_t t = begin; t < end; ++t) {
+                                   if (good[t]) continue;
+                                   if (quality(static_cast<int32_t>(t)) >= kOptimizeBelowQuality) {
+                                     good[t] = 1;
+                                     continue;
+                                   }
+                                   for (int32_t v : t_[t])
+                                     if (v >= nfix_) out.push_back(v);
+                                 }
+                               });
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     return nodes;
