@@ -1,4 +1,9 @@
-// flip_round.h: grid-stride kernels over a round's lists, whose lengths live on the device.
+// flip_round.h: grid-stride phases over a round's lists, whose lengths live on the device; each
+// phase is a kernel of its own, or a stretch of the cooperative loop between two grid barriers.
+#include <cooperative_groups.h>
+
+#include <algorithm>
+
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
 #include "kernels/predicates.cuh"
@@ -28,8 +33,8 @@ __device__ inline void push_next(const FlipBatch& b, Slots s, int32_t t) {
   push(t, b.round + 1, b.work_stamp[s.out], b.work[s.out], &b.counters->queued[s.out]);
 }
 
-// force_full: a round the host drives.
-__global__ void open_round(FlipBatch* b, bool force_full) {
+// force_full: a round the host drives. One thread.
+__device__ void open_round_body(FlipBatch* b, bool force_full) {
   TopologyCounters* c = b->counters;
   if (force_full) {
     c->checked = 0;
@@ -50,9 +55,9 @@ __global__ void open_round(FlipBatch* b, bool force_full) {
   b->full = 0;
   c->queued[slots_of(*b).out] = 0;
 }
+__global__ void open_round(FlipBatch* b, bool force_full) { open_round_body(b, force_full); }
 
-__global__ void test_edges(const FlipBatch* bp) {
-  const FlipBatch& b = *bp;
+__device__ void test_edges_body(const FlipBatch& b) {
   TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
@@ -86,6 +91,7 @@ __global__ void test_edges(const FlipBatch* bp) {
     }
   }
 }
+__global__ void test_edges(const FlipBatch* b) { test_edges_body(*b); }
 
 __global__ void vote_edges(const FlipBatch* bp, DeviceSpan<const int32_t> edges) {
   const FlipBatch& b = *bp;
@@ -100,8 +106,7 @@ __global__ void vote_edges(const FlipBatch* bp, DeviceSpan<const int32_t> edges)
 
 // The flip of edge bc between t = [a, b, c] and u = [d, c, b] into t' = [a, b, d], u' = [a, d, c];
 // the outer neighbours keep their old ids here and are re-linked by relink.
-__global__ void flip(const FlipBatch* bp) {
-  const FlipBatch& b = *bp;
+__device__ void flip_body(const FlipBatch& b) {
   TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
@@ -133,6 +138,7 @@ __global__ void flip(const FlipBatch* bp) {
     }
   }
 }
+__global__ void flip(const FlipBatch* b) { flip_body(*b); }
 
 __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   bool h0 = false, h1 = false;
@@ -143,8 +149,7 @@ __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   return h0 && h1;
 }
 
-__global__ void relink(const FlipBatch* bp) {
-  const FlipBatch& b = *bp;
+__device__ void relink_body(const FlipBatch& b) {
   const TopologyCounters* c = b.counters;
   if (c->settled) return;
   const int64_t n = c->voted;
@@ -168,17 +173,20 @@ __global__ void relink(const FlipBatch* bp) {
     }
   }
 }
+__global__ void relink(const FlipBatch* b) { relink_body(*b); }
 
-// The voted triangles' votes go back, and those that did not flip test again next round. In the
-// graph, the loop goes on while rounds find candidates.
-__global__ void close_round(FlipBatch* bp, bool in_graph, cudaGraphConditionalHandle more) {
-  FlipBatch& b = *bp;
-  TopologyCounters* c = b.counters;
-  if (in_graph && thread_index() == 0) {
-    const bool again = !c->settled && c->candidates > 0 && ++b.rounds < b.rounds_per_launch;
-    if (!again) b.rounds = 0;
-    cudaGraphSetConditional(more, again);
-  }
+// Whether a loop on the device runs another round: the round found candidates, within
+// rounds_per_launch rounds of the launch. One thread, before the next round opens.
+__device__ bool another_round(FlipBatch& b) {
+  const TopologyCounters* c = b.counters;
+  const bool again = !c->settled && c->candidates > 0 && ++b.rounds < b.rounds_per_launch;
+  if (!again) b.rounds = 0;
+  return again;
+}
+
+// The voted triangles' votes go back, and those that did not flip test again next round.
+__device__ void close_round_body(const FlipBatch& b) {
+  const TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
   const int64_t n = c->voted;
@@ -186,6 +194,31 @@ __global__ void close_round(FlipBatch* bp, bool in_graph, cudaGraphConditionalHa
     const int32_t t = b.voted[i];
     b.vote[t] = 0x7f7f7f7f;
     push_next(b, s, t);
+  }
+}
+__global__ void close_round(const FlipBatch* b) { close_round_body(*b); }
+
+// The rounds in one cooperative launch: the same phases as the kernels above, a grid barrier
+// between two where those have a kernel boundary.
+__global__ void flip_loop(FlipBatch* bp) {
+  namespace cg = cooperative_groups;
+  const cg::grid_group grid = cg::this_grid();
+  FlipBatch& b = *bp;
+  for (;;) {
+    if (grid.thread_rank() == 0) open_round_body(bp, false);
+    grid.sync();
+    test_edges_body(b);
+    grid.sync();
+    flip_body(b);
+    grid.sync();
+    relink_body(b);
+    grid.sync();
+    // another_round reads what close_round_body leaves alone, and the next round's opening
+    // waits for the barrier below: the decision may share the phase.
+    if (grid.thread_rank() == 0) b.again = another_round(b);
+    close_round_body(b);
+    grid.sync();
+    if (!b.again) return;
   }
 }
 
@@ -223,13 +256,30 @@ void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaSt
   MESHD_CHECK_LAUNCH("vote_edges");
 }
 
-void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
-                  cudaStream_t stream) {
+int64_t flip_loop_blocks(int device) {
+  int cooperative = 0;
+  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device));
+  if (!cooperative) return 0;
+  int per_sm = 0, sms = 0;
+  MESHD_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, flip_loop, kBlock, 0));
+  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  return static_cast<int64_t>(std::min(per_sm, kFlipLoopBlocksPerSm)) * sms;
+}
+
+void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
+  void* args[] = {&batch};
+  MESHD_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(flip_loop),
+                                               static_cast<unsigned>(blocks), kBlock, args, 0,
+                                               stream));
+  MESHD_CHECK_LAUNCH("flip_loop");
+}
+
+void launch_flips(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
   flip<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("flip");
   relink<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("relink");
-  close_round<<<blocks, kBlock, 0, stream>>>(batch, more != nullptr, more != nullptr ? *more : 0);
+  close_round<<<blocks, kBlock, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("close_round");
 }
 

@@ -10,8 +10,8 @@
 // flips among two million triangles; testing them all every round was most of its time.
 //
 // The kernels read their arguments from a FlipBatch in device memory and count the rounds there,
-// so that one CUDA graph (loop_graph.h) runs the rounds of every repair of every job: a while
-// loop that ends when a round finds no candidate, with no host round trip in between.
+// so that one cooperative launch runs a repair's rounds until one finds no candidate, with no
+// host round trip in between (launch_flip_loop).
 #pragma once
 
 #include <cuda_runtime.h>
@@ -41,18 +41,19 @@ struct FlipBatch {
   DeviceSpan<int32_t> undecided;      // the round's undecided edge ids (up to its size)
   TopologyCounters* counters;
   int32_t *work[2], *work_stamp[2], *voted, *voted_stamp;  // FlipLists
-  int32_t rounds_per_launch;  // the graph's loop ends after this many rounds (the host relaunches)
+  int32_t rounds_per_launch;  // the loop ends after this many rounds (the host relaunches)
   int32_t full;  // the next round tests every edge (the first of a repair, or one the host drives)
   // Written by the kernels only: the host's copy of the fields above ends here.
   int32_t round;       // the current round's number, counted on the device for the engine's life
   int32_t round_full;  // the current round tests every edge
-  int32_t rounds;      // rounds the graph's loop has run since its launch
+  int32_t rounds;      // rounds a loop on the device has run since its launch
+  int32_t again;       // the cooperative loop's decision, for every thread of its grid
 };
 
-// Rounds one launch of the graph runs at most, unless told otherwise: a repair that needs more
+// Rounds one launch of the loop runs at most, unless told otherwise: a repair that needs more
 // is launched again (a slow cascade along a long chain flips one edge a round: G5's finest level
 // at 16M nodes needed more than 200).
-constexpr int32_t kGraphFlipRounds = 200;
+constexpr int32_t kLoopFlipRounds = 200;
 
 // Sizes the lists for #M triangles and forgets every stamp: at the start of a repair.
 void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream);
@@ -66,10 +67,20 @@ void launch_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t strea
 void launch_full_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
 // Votes for the edges (ids 3 t + k) that the host decided to flip, between the two halves.
 void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaStream_t stream);
-// The second half: the flips, the links, the votes reset and the next round's list. In the
-// graph (`more` given), sets its loop condition: whether the round found candidates, within
-// rounds_per_launch rounds of the launch.
-void launch_flips(FlipBatch* batch, int64_t blocks, const cudaGraphConditionalHandle* more,
-                  cudaStream_t stream);
+// The second half: the flips, the links, the votes reset and the next round's list.
+void launch_flips(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
+
+// A repair's rounds in one cooperative launch (after its first, which tests every edge with a
+// full grid of its own): rounds until one finds no candidate, or rounds_per_launch of them, the
+// grid waiting at a barrier where the kernels above end. A cascade's lists hold a few thousand
+// triangles, so a round is bound by its chain of dependent loads more than by its blocks: one
+// block per SM did best (G5's flips at 1M nodes on an H200: 167 ms, 195-203 with 2-8 blocks per
+// SM, 180 through a CUDA graph of the kernels). Out of graphs with conditional nodes, the rounds
+// are also where compute-sanitizer's memcheck can follow them (bench/RESULTS.md).
+constexpr int kFlipLoopBlocksPerSm = 1;
+// The loop's grid on `device`: kFlipLoopBlocksPerSm blocks per SM, or 0 where the device cannot
+// launch cooperatively (then the caller launches the rounds one by one).
+int64_t flip_loop_blocks(int device);
+void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
 
 }  // namespace meshd::gpu

@@ -37,10 +37,10 @@ namespace {
 
 // Undecided in-circle tests a round may hand to the host; more means a rebuild.
 constexpr int32_t kMaxUndecided = 4096;
-// Flip rounds launched one by one (without the graph) between two reads of the counters.
+// Flip rounds launched one by one (without the device's loop) between two reads of the counters.
 constexpr int kRoundsPerBatch = 8;
-// A repair that needs more batches of rounds than this (kRoundsPerBatch rounds each, or with the
-// graph up to flip_rounds_per_launch) is pathological: rebuild instead.
+// A repair that needs more batches of rounds than this (kRoundsPerBatch rounds each, or in the
+// loop up to flip_rounds_per_launch) is pathological: rebuild instead.
 constexpr int kMaxFlipLaunches = 25;
 
 // Pinned host memory for the few scalars read every step.
@@ -147,9 +147,9 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   gpu::FlipLists flip_lists;
-  DeviceBuffer<gpu::FlipBatch> flip_batch;     // one
-  std::unique_ptr<gpu::LoopGraph> flip_graph;  // null: the rounds launched one by one
-  int32_t flip_rounds_per_launch = gpu::kGraphFlipRounds;
+  DeviceBuffer<gpu::FlipBatch> flip_batch;  // one
+  int64_t flip_loop_blocks = 0;  // the rounds' cooperative loop (0: rounds launched one by one)
+  int32_t flip_rounds_per_launch = gpu::kLoopFlipRounds;
   PinnedValue<gpu::FlipBatch> h_flip;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
@@ -510,7 +510,7 @@ struct GpuEngine::Impl {
     for (int launches = 0; launches < kMaxFlipLaunches; ++launches) {
       // Rounds back to back, read once: repairs cascade through a dozen rounds of a few flips
       // each, and a host round trip per round would cost more than the flips.
-      run_flip_rounds();
+      run_flip_rounds(launches == 0);
       const gpu::TopologyCounters rc = read_counters();
       if (rc.undecided > kMaxUndecided) return -1;
       if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
@@ -524,7 +524,7 @@ struct GpuEngine::Impl {
         // Exactly co-circular quadruples stay undecided for the filter: once the host says
         // that none of them flips and nothing else does, the triangulation is Delaunay.
         if (again.candidates == 0 && to_flip == 0) return again.flips;
-        gpu::launch_flips(flip_batch.data(), step_wave, nullptr, stream);
+        gpu::launch_flips(flip_batch.data(), step_wave, stream);
         unsettle();  // the host's flips may make new candidates, however few the round found
       }
     }
@@ -554,17 +554,18 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemcpyAsync(flip_batch.data(), &b, offsetof(gpu::FlipBatch, round),
                                      cudaMemcpyHostToDevice, stream));
   }
-  // Rounds until one finds no candidate (the graph), or kRoundsPerBatch rounds launched one by
-  // one, of which those after such a round return at once.
-  void run_flip_rounds() {
-    if (flip_graph) {
-      flip_graph->launch(stream);
-      return;
+  // Rounds until one finds no candidate (the device's loop), or kRoundsPerBatch rounds launched
+  // one by one, of which those after such a round return at once. A repair's first round tests
+  // every edge: it gets a full grid of its own, the loop's few blocks the cascade that follows.
+  void run_flip_rounds(bool first) {
+    const int rounds = flip_loop_blocks > 0 ? 1 : kRoundsPerBatch;
+    if (first || flip_loop_blocks == 0) {
+      for (int r = 0; r < rounds; ++r) {
+        gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
+        gpu::launch_flips(flip_batch.data(), step_wave, stream);
+      }
     }
-    for (int r = 0; r < kRoundsPerBatch; ++r) {
-      gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
-      gpu::launch_flips(flip_batch.data(), step_wave, nullptr, stream);
-    }
+    if (flip_loop_blocks > 0) gpu::launch_flip_loop(flip_batch.data(), flip_loop_blocks, stream);
   }
   void unsettle() {
     MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->checked, 0, 2 * sizeof(int32_t), stream));
@@ -870,10 +871,9 @@ void GpuEngine::set_step_graph(bool on) {
   s.use_device();
   if (!on) {
     s.step_graph.reset();
-    s.flip_graph.reset();
+    s.flip_loop_blocks = 0;
   } else if (!s.step_graph) {
     gpu::StepBatch* batch = s.batch.data();
-    gpu::FlipBatch* flips = s.flip_batch.data();
     const int64_t wave = s.step_wave;
     s.step_graph = std::make_unique<gpu::LoopGraph>(
         [&](const cudaGraphConditionalHandle& more, cudaStream_t stream) {
@@ -881,12 +881,7 @@ void GpuEngine::set_step_graph(bool on) {
           gpu::launch_finish_step(batch, &more, stream);
         },
         s.stream);
-    s.flip_graph = std::make_unique<gpu::LoopGraph>(
-        [&](const cudaGraphConditionalHandle& more, cudaStream_t stream) {
-          gpu::launch_flip_candidates(flips, wave, stream);
-          gpu::launch_flips(flips, wave, &more, stream);
-        },
-        s.stream);
+    s.flip_loop_blocks = gpu::flip_loop_blocks(s.device);
   }
 }
 

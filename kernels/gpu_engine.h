@@ -56,12 +56,12 @@ class GpuEngine final : public Engine {
   void set_lagged_scale(bool on);
 
   // The step as a CUDA graph that runs up to 32 steps per host round trip (loop_graph.h), and a
-  // repair's flip rounds as one that runs them until they settle (flip_round.h): the default,
-  // unless the environment sets MESHD_GPU_STEP_GRAPH=0. Otherwise their kernels are launched one
-  // by one, one step or eight rounds per round trip (for comparison, and for tools that cannot
-  // follow a graph).
+  // repair's flip rounds in one cooperative launch that runs them until they settle
+  // (flip_round.h): the default, unless the environment sets MESHD_GPU_STEP_GRAPH=0. Otherwise
+  // their kernels are launched one by one, one step or eight rounds per round trip (for
+  // comparison, and for tools that cannot follow a graph).
   void set_step_graph(bool on);
-  // For tests: the flip graph's rounds per launch (gpu::kGraphFlipRounds by default), after
+  // For tests: the flip loop's rounds per launch (gpu::kLoopFlipRounds by default), after
   // which a repair that still finds candidates launches it again.
   void set_flip_rounds_per_launch(int rounds);
 

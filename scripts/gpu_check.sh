@@ -20,14 +20,12 @@ for step in "${steps[@]}"; do
       san=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
       # MESHD_SANITIZE_FILTER narrows both tools to some tests (e.g. a new kernel's).
       filter=${MESHD_SANITIZE_FILTER:-'Geometries/GpuAgreement.OneStep*:Geometries/GpuAgreement.Density*:Geometries/GpuAgreement.Initial*:GpuEngine.*:*Repair*/1'}
-      # memcheck with the kernels launched one by one and with the step and flip graphs, also
-      # over whole meshes of G1 and G5 (node removal, completion). With the graphs, memcheck
-      # makes the repair tests fault now and then (an illegal or misaligned address, with no
-      # access reported) where they pass outside it, under it without the graphs, and with
-      # every span index checked (-DMESHD_CHECKED_SPANS=ON) inside the graphs: its run is kept
-      # and read beside the other (bench/RESULTS.md, 2026-11-26). racecheck
-      # crashes on graphs with conditional nodes, so it runs the kernels launched one by one;
-      # over a whole mesh it takes ten minutes.
+      # memcheck with the kernels launched one by one and with the step graph and the flip
+      # rounds' cooperative loop, also over whole meshes of G1 and G5 (node removal,
+      # completion). While the flip rounds ran in a graph with a conditional node, memcheck
+      # faulted there now and then without naming an access (bench/RESULTS.md, 2026-11-26).
+      # racecheck crashes on graphs with conditional nodes, so it runs the kernels launched one
+      # by one; over a whole mesh it takes ten minutes.
       whole='*StepGraph*:*WholeMesh*/0:*WholeMesh*/4'
       [ -n "${MESHD_SANITIZE_FILTER:-}" ] && whole=''
       runs=("memcheck 0 $filter${whole:+:$whole}"

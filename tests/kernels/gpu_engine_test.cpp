@@ -282,10 +282,10 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
   EXPECT_GT(total_flips, 0) << "the test never exercised a flip";
 }
 
-// A repair whose rounds outlast one launch of the flip graph launches it again: with one round a
+// A repair whose rounds outlast one launch of the flip loop launches it again: with one round a
 // launch, every repair that flips needs several launches, and none may fall back to a rebuild.
 // The result is the triangulation CGAL builds from scratch, up to dropped boundary slivers.
-TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipGraphGoOn) {
+TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipLoopGoOn) {
   SKIP_WITHOUT_GPU();
   const CompiledProblem c = compiled("G2", 3000);
   ThreadPool pool;
