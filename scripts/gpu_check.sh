@@ -2,8 +2,9 @@
 # Runs on the GPU machine from a bundle of the executables (.gpu/, made by the gpu-bundle tool):
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
-# the overhead), and many small jobs through meshd (throughput). Logs go to $OUT (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput]...
+# the overhead), many small jobs through meshd (throughput), and one GPU against all of a host's
+# (gpus). Logs go to $OUT (or ./gpu-logs).
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput|gpus]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -132,5 +133,18 @@ for step in "${steps[@]}"; do
       done
       t --jobs 1000 --clients 64 --nodes 500,2000,10000,50000 -- --gpu-workers 8 \
         --cpu-workers "$cores" --cpu-threads 1 | sed "s/\$/ auto, 8 GPU + $cores CPU workers |/" ;;
+    gpus)
+      # The same jobs on the first GPU, then on every visible one (8 GPU workers each, every job
+      # asking for a GPU), twice in turn: ~2k-node disks and 50k-node ones.
+      all=$(nvidia-smi --query-gpu=index --format=csv,noheader | paste -sd, -)
+      echo "| GPUs | jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | on GPU | on CPU |"
+      for nodes in 2000 50000; do
+        jobs=3000; [ $nodes -gt 10000 ] && jobs=600
+        for visible in 0 "$all" 0 "$all"; do
+          CUDA_VISIBLE_DEVICES=$visible $run throughput --jobs $jobs --clients 128 --job-backend gpu \
+            --nodes $nodes -- --backend gpu --gpu-workers 8 2>&1 | tee -a "$out/gpus.log" |
+            tail -n 1 | sed "s/^/| $visible /"
+        done
+      done ;;
   esac
 done
