@@ -558,12 +558,10 @@ struct GpuEngine::Impl {
   // one by one, of which those after such a round return at once. A repair's first round tests
   // every edge: it gets a full grid of its own, the loop's few blocks the cascade that follows.
   void run_flip_rounds(bool first) {
-    const int rounds = flip_loop_blocks > 0 ? 1 : kRoundsPerBatch;
-    if (first || flip_loop_blocks == 0) {
-      for (int r = 0; r < rounds; ++r) {
-        gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
-        gpu::launch_flips(flip_batch.data(), step_wave, stream);
-      }
+    const int rounds_by_kernels = flip_loop_blocks == 0 ? kRoundsPerBatch : first ? 1 : 0;
+    for (int r = 0; r < rounds_by_kernels; ++r) {
+      gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
+      gpu::launch_flips(flip_batch.data(), step_wave, stream);
     }
     if (flip_loop_blocks > 0) gpu::launch_flip_loop(flip_batch.data(), flip_loop_blocks, stream);
   }
@@ -609,16 +607,7 @@ struct GpuEngine::Impl {
     position.resize(m);
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
     gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
-    int64_t nb = 0;
-    if (m > 0) {
-      int32_t last[2];
-      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[0], position.data() + m - 1, sizeof(int32_t),
-                                       cudaMemcpyDeviceToHost, stream));
-      MESHD_CUDA_CHECK(cudaMemcpyAsync(&last[1], count.data() + m - 1, sizeof(int32_t),
-                                       cudaMemcpyDeviceToHost, stream));
-      sync();
-      nb = last[0] + last[1];
-    }
+    const int64_t nb = gpu::scan_total(position.data(), count.data(), m, stream);
     bars.resize(nb);
     scale_lagged_ok = false;
     gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
@@ -639,15 +628,10 @@ struct GpuEngine::Impl {
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
-    // Kept triangles, for the stats.
-    int64_t kept = 0;
-    if (m > 0) {
-      position.resize(m);
-      gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
-      kept = gpu::scan_total(position.data(), keep.data(), m, stream);
-    }
+    // Kept triangles, for the stats: position is free again once the bars are written.
+    gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
     TopologyStats stats;
-    stats.triangles = kept;
+    stats.triangles = gpu::scan_total(position.data(), keep.data(), m, stream);
     stats.bars = nb;
     return stats;
   }
