@@ -1,0 +1,98 @@
+#include "core/distmesh3d/distmesh3d.h"
+
+#include "core/common/error.h"
+#include "core/distmesh3d/initial_points3d.h"
+#include "core/distmesh3d/optimize_slivers3d.h"
+#include "core/distmesh3d/step3d.h"
+#include "core/distmesh3d/topology3d.h"
+
+namespace meshd {
+namespace {
+
+// The tetrahedra's points in first use order after the fixed ones, renumbered; points no kept
+// tetrahedron uses (outside, or cut off by the centroid filter) go.
+Relaxed3 compact(std::vector<Vec3> points, std::vector<std::array<int32_t, 4>> tets,
+                 int64_t fixed) {
+  std::vector<int32_t> index(points.size(), -1);
+  Relaxed3 out;
+  for (int64_t i = 0; i < fixed; ++i) {
+    index[i] = static_cast<int32_t>(out.points.size());
+    out.points.push_back(points[i]);
+  }
+  for (auto& t : tets)
+    for (int32_t& v : t) {
+      if (index[v] < 0) {
+        index[v] = static_cast<int32_t>(out.points.size());
+        out.points.push_back(points[v]);
+      }
+      v = index[v];
+    }
+  out.tets = std::move(tets);
+  return out;
+}
+
+}  // namespace
+
+Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool) {
+  if (!(h0 > 0.0)) throw Error(ErrorCode::kInvalidArgument, "h0", "must be > 0");
+  const double geps = params.geps * h0;
+
+  // 1-2. Initial nodes, fixed first.
+  Nodes3 nodes;
+  nodes.points = initial_points3d(domain, h0, params.geps, params.seed);
+  nodes.fixed = static_cast<int64_t>(domain.fixed.size());
+  nodes.momentum.assign(nodes.points.size(), Vec3{});
+  nodes.at_triangulation = nodes.points;
+
+  StepRule rule;
+  rule.ttol = params.ttol;
+  rule.dptol = params.dptol;
+  rule.max_move_factor = params.max_move_factor;
+  rule.patience = params.patience;
+
+  Topology3 topology;
+  BarLengths bars;
+  Relaxed3 stats;
+  bool retriangulate = true;
+  for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
+    // 3. Retriangulate once a node drifted ttol of its length.
+    if (retriangulate) {
+      nodes.at_triangulation = nodes.points;
+      topology = triangulate3d(domain, nodes.points, geps, pool);
+      ++stats.retriangulations;
+    }
+    // 4, 5, 7, 8. Forces, move, projection.
+    const StepResult step = step3d(domain, params, h0, topology, nodes, bars, pool);
+    stats.iterations = iteration;
+    rule.settling = rule.settle(rule.settling, step);
+    if (rule.converged(step, iteration, rule.settling)) {
+      stats.converged = true;
+      break;
+    }
+    retriangulate = rule.needs_triangulation(step.max_drift);
+    // 6. Density control on this step's bars: both ends of a bar far shorter than it should be.
+    if (params.density_control_interval > 0 && iteration % params.density_control_interval == 0) {
+      const std::vector<int32_t> crowded = crowded_nodes3d(topology, bars, nodes.fixed);
+      if (!crowded.empty()) {
+        remove_nodes3d(nodes, crowded);
+        stats.removed += static_cast<int64_t>(crowded.size());
+        retriangulate = true;
+      }
+    }
+  }
+
+  // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
+  topology = triangulate3d(domain, nodes.points, geps, pool);
+  Relaxed3 out = compact(std::move(nodes.points), std::move(topology.tets), nodes.fixed);
+  out.iterations = stats.iterations;
+  out.retriangulations = stats.retriangulations + 1;
+  out.removed = stats.removed;
+  out.converged = stats.converged;
+  // The finish: slivers, which the forces leave (optimize_slivers3d.h).
+  if (params.optimize_slivers)
+    out.optimizer_moves =
+        optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, nodes.fixed, pool);
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,32 @@
+// The 3D DistMesh loop, in the order of distmeshnd.m, with the 2D loop's termination rule and
+// density control (params3d.h has every constant).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/thread_pool.h"
+#include "core/common/vec3.h"
+#include "core/distmesh3d/domain3d.h"
+#include "core/distmesh3d/params3d.h"
+
+namespace meshd {
+
+// The relaxed and optimised nodes and their tetrahedra, before the boundary faces are found.
+struct Relaxed3 {
+  std::vector<Vec3> points;                  // #N by 3, fixed first, every one used
+  std::vector<std::array<int32_t, 4>> tets;  // #M by 4, positively oriented
+  int iterations = 0;
+  int retriangulations = 0;
+  int64_t removed = 0;          // nodes density control took out
+  int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
+  bool converged = false;
+};
+
+// Meshes `domain` with tetrahedra of edge about h0 times its size field (h0 > 0, the request's
+// length unit). `pool` may be null (the caller's thread alone); the result is the same for any
+// number of threads.
+Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool);
+
+}  // namespace meshd

@@ -1,0 +1,31 @@
+// What the 3D DistMesh loop needs to know of a domain: its signed distance, the size field, a
+// box around it, the nodes it must keep fixed and the boundary groups.
+//
+// Plain callables, so that the loop (distmesh3d.h) does not care where they come from: the
+// compiled 3D geometry (core/geometry3d/) or a test's own function.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/common/vec3.h"
+
+namespace meshd {
+
+struct Domain3 {
+  // Signed distance, negative inside, in the request's length unit.
+  std::function<double(Vec3)> distance;
+  // Relative desired edge length h(p) > 0 (DistMesh's fh); empty for a uniform field.
+  std::function<double(Vec3)> size;
+  // Contains the whole domain.
+  Box3 bounds;
+  // Nodes that never move (sharp corners and samples along sharp edges), #F by 3.
+  std::vector<Vec3> fixed;
+  // The boundary group of a point on the boundary, an index into `boundary_names`; empty: one
+  // group named "boundary".
+  std::function<int(Vec3)> boundary_group;
+  std::vector<std::string> boundary_names;
+};
+
+}  // namespace meshd

@@ -1,0 +1,34 @@
+// A Domain3 (domain3d.h) made from a 3D geometry tree: the compiled program's distance, its box,
+// its sharp features as fixed nodes, and its primitives' names as boundary groups.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/distmesh3d/domain3d.h"
+#include "core/geometry3d/program3d.h"
+#include "core/geometry3d/shape3d.h"
+
+namespace meshd {
+
+class GeometryDomain3 {
+ public:
+  // Compiles `shape` (throws Error naming the field for a bad one) and samples its sharp edges
+  // about h0 times the size field's smallest value along them apart. size: the relative edge
+  // length h(p) > 0, or empty for a uniform field. h0 > 0 in the request's length unit.
+  GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size = {});
+  // The domain's callables point into this object.
+  GeometryDomain3(const GeometryDomain3&) = delete;
+  GeometryDomain3& operator=(const GeometryDomain3&) = delete;
+
+  const Domain3& domain() const { return domain_; }
+  const Program3& program() const { return program_; }
+
+ private:
+  Program3 program_;
+  std::vector<int> group_of_primitive_;  // #P: index into domain_.boundary_names
+  Domain3 domain_;
+};
+
+}  // namespace meshd

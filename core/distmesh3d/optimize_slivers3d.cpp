@@ -1,0 +1,223 @@
+#include "core/distmesh3d/optimize_slivers3d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "core/distmesh3d/projection3d.h"
+#include "core/mesh3d/tet_boundary.h"
+#include "core/mesh3d/tet_quality.cuh"
+
+namespace meshd {
+namespace {
+
+constexpr int kPasses = 8;
+constexpr int kStepHalvings = 6;
+// Nodes per task in a parallel loop: a boundary node's search costs a few hundred distances.
+constexpr size_t kNodesPerChunk = 16;
+constexpr size_t kTetsPerChunk = 4096;
+
+// The 14 directions of a body-centred lattice's neighbours: the axes and the cube's diagonals.
+std::array<Vec3, 14> space_directions() {
+  std::array<Vec3, 14> d{};
+  int n = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double s : {-1.0, 1.0}) {
+      Vec3 v{};
+      (axis == 0 ? v.x : axis == 1 ? v.y : v.z) = s;
+      d[n++] = v;
+    }
+  const double c = 1.0 / std::sqrt(3.0);
+  for (int k = 0; k < 8; ++k) d[n++] = {k & 1 ? c : -c, k & 2 ? c : -c, k & 4 ? c : -c};
+  return d;
+}
+
+class SliverOptimizer {
+ public:
+  SliverOptimizer(const Domain3& domain, double step, std::vector<Vec3>& points,
+                  const std::vector<std::array<int32_t, 4>>& tets, int64_t fixed, ThreadPool* pool)
+      : domain_(domain),
+        step_(step),
+        p_(points),
+        t_(tets),
+        fixed_(fixed),
+        pool_(pool),
+        on_boundary_(points.size(), 0),
+        first_(points.size() + 1, 0) {
+    for (const auto& f : tet_boundary_faces(tets))
+      for (int32_t v : f) on_boundary_[v] = 1;
+    for (const auto& t : tets)
+      for (int32_t v : t) ++first_[v + 1];
+    for (size_t v = 0; v < points.size(); ++v) first_[v + 1] += first_[v];
+    star_.resize(first_.back());
+    std::vector<int64_t> next(first_.begin(), first_.end() - 1);
+    for (size_t t = 0; t < tets.size(); ++t)
+      for (int32_t v : tets[t]) star_[next[v]++] = static_cast<int32_t>(t);
+  }
+
+  int64_t run() {
+    int64_t moves = 0;
+    for (int pass = 0; pass < kPasses; ++pass) {
+      int64_t pass_moves = 0;
+      for (const std::vector<int32_t>& group : colour_groups(nodes_of_bad_tets())) {
+        std::vector<char> moved(group.size(), 0);
+        for_chunks(pool_, group.size(), kNodesPerChunk, [&](size_t, size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) moved[i] = optimize_node(group[i]);
+        });
+        for (char m : moved) pass_moves += m;
+      }
+      moves += pass_moves;
+      if (pass_moves == 0) break;
+    }
+    return moves;
+  }
+
+ private:
+  double quality(int32_t t) const {
+    const auto& v = t_[t];
+    return oriented_tet_radius_ratio(p_[v[0]], p_[v[1]], p_[v[2]], p_[v[3]]);
+  }
+
+  // The free nodes, increasing, of the tetrahedra worth visiting.
+  std::vector<int32_t> nodes_of_bad_tets() const {
+    std::vector<int32_t> nodes = gather_chunks<int32_t>(
+        pool_, t_.size(), kTetsPerChunk, [&](size_t begin, size_t end, std::vector<int32_t>& out) {
+          for (size_t t = begin; t < end; ++t) {
+            if (quality(static_cast<int32_t>(t)) >= kVisitBelowQuality3) continue;
+            for (int32_t v : t_[t])
+              if (v >= fixed_) out.push_back(v);
+          }
+        });
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    return nodes;
+  }
+
+  // `nodes` (increasing) in groups of which no two share a tetrahedron: each node, in order,
+  // takes the first group that none of its neighbours already took.
+  std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
+    std::unordered_map<int32_t, int32_t> colour;
+    std::vector<std::vector<int32_t>> groups;
+    std::vector<char> taken;
+    for (int32_t v : nodes) {
+      taken.assign(groups.size() + 1, 0);
+      for (int64_t k = first_[v]; k < first_[v + 1]; ++k)
+        for (int32_t u : t_[star_[k]]) {
+          const auto it = colour.find(u);
+          if (it != colour.end()) taken[it->second] = 1;
+        }
+      const auto c = static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+      if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
+      groups[c].push_back(v);
+      colour[v] = c;
+    }
+    return groups;
+  }
+
+  // How good v's star is with v at x: its worst quality up to the target, then its mean.
+  struct Score {
+    double worst = -INFINITY;
+    double mean = -INFINITY;
+    bool operator>(const Score& o) const {
+      return worst > o.worst || (worst == o.worst && mean > o.mean);
+    }
+  };
+  Score star_score(int32_t v, Vec3 x) {
+    const Vec3 saved = p_[v];
+    p_[v] = x;
+    double worst = INFINITY, sum = 0.0;
+    for (int64_t k = first_[v]; k < first_[v + 1]; ++k) {
+      const double q = quality(star_[k]);
+      worst = std::min(worst, q);
+      sum += q;
+    }
+    p_[v] = saved;
+    const auto count = static_cast<double>(first_[v + 1] - first_[v]);
+    return {std::min(worst, kOptimizeBelowQuality3), count > 0.0 ? sum / count : 0.0};
+  }
+
+  double mean_star_edge(int32_t v) const {
+    double sum = 0.0;
+    int count = 0;
+    for (int64_t k = first_[v]; k < first_[v + 1]; ++k)
+      for (int32_t u : t_[star_[k]]) {
+        if (u == v) continue;
+        sum += norm(p_[u] - p_[v]);
+        ++count;
+      }
+    return count > 0 ? sum / count : 0.0;
+  }
+
+  // Eight directions in the boundary's tangent plane at v, or none where it has no normal.
+  int tangent_directions(int32_t v, Vec3* dirs) const {
+    const Vec3 g = distance_gradient3d(domain_, p_[v], domain_.distance(p_[v]), step_);
+    const double len = norm(g);
+    if (!(len > 0.0)) return 0;
+    const Vec3 n = (1.0 / len) * g;
+    // Any vector not along n, crossed with n, gives the first tangent.
+    const Vec3 a = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+    Vec3 t1 = cross(n, a);
+    t1 = (1.0 / norm(t1)) * t1;
+    const Vec3 t2 = cross(n, t1);
+    for (int k = 0; k < 8; ++k) dirs[k] = std::cos(k * M_PI / 4) * t1 + std::sin(k * M_PI / 4) * t2;
+    return 8;
+  }
+
+  // Pattern search from v's position; returns whether v moved.
+  bool optimize_node(int32_t v) {
+    static const std::array<Vec3, 14> kSpace = space_directions();
+    const bool boundary = on_boundary_[v];
+    Score best = star_score(v, p_[v]);
+    const Vec3 start = p_[v];
+    double length = 0.25 * mean_star_edge(v);
+    for (int h = 0; h < kStepHalvings; ++h, length *= 0.5) {
+      for (bool improved = true; improved;) {
+        improved = false;
+        Vec3 dirs[14];
+        int n_dirs = 0;
+        if (boundary) {
+          n_dirs = tangent_directions(v, dirs);
+          if (n_dirs == 0) return !(p_[v] == start);
+        } else {
+          for (const Vec3& d : kSpace) dirs[n_dirs++] = d;
+        }
+        Vec3 best_x = p_[v];
+        for (int k = 0; k < n_dirs; ++k) {
+          Vec3 x = p_[v] + length * dirs[k];
+          if (boundary)
+            x = project_to_boundary3d(domain_, x, step_);
+          else if (domain_.distance(x) >= 0.0)
+            continue;
+          const Score q = star_score(v, x);
+          if (q > best) {
+            best = q;
+            best_x = x;
+            improved = true;
+          }
+        }
+        p_[v] = best_x;
+      }
+    }
+    return !(p_[v] == start);
+  }
+
+  const Domain3& domain_;
+  double step_;
+  std::vector<Vec3>& p_;
+  const std::vector<std::array<int32_t, 4>>& t_;
+  int64_t fixed_;
+  ThreadPool* pool_;
+  std::vector<char> on_boundary_;
+  std::vector<int64_t> first_;  // #N + 1: node v's tetrahedra are star_[first_[v] .. first_[v+1])
+  std::vector<int32_t> star_;
+};
+
+}  // namespace
+
+int64_t optimize_slivers3d(const Domain3& domain, double step, std::vector<Vec3>& points,
+                           const std::vector<std::array<int32_t, 4>>& tets, int64_t fixed,
+                           ThreadPool* pool) {
+  return SliverOptimizer(domain, step, points, tets, fixed, pool).run();
+}
+
+}  // namespace meshd

@@ -1,0 +1,99 @@
+// The 3D geometry as a tree, in plain C++: what a request describes after conversion.
+//
+// Distances are signed, negative inside. Operations follow the usual CSG algebra on signed
+// distance functions: union = min, intersection = max, difference a \ b = max(a, -b). Transforms
+// are similarities (rotation, uniform scale, translation), so the compiler folds them into the
+// primitives and every primitive distance stays exact.
+//
+// Each node keeps `path`, the request field it came from (the node itself, such as
+// "geometry.union.shapes[2]"). The compiler names a bad parameter by that path, the node's kind
+// and the field: "geometry.union.shapes[2].sphere.radius".
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/common/vec3.h"
+#include "core/geometry/shape.h"  // CsgOp, shared with 2D
+
+namespace meshd {
+
+struct Sphere {
+  Vec3 center;
+  double radius = 0.0;  // > 0
+};
+
+// Axis-aligned before any enclosing transform.
+struct Cuboid {
+  Vec3 min;
+  Vec3 max;  // max > min in every coordinate
+};
+
+// A finite cylinder with flat caps; its axis runs along +z from the centre of its base before
+// any enclosing transform.
+struct Cylinder {
+  Vec3 base_center;
+  double radius = 0.0;  // > 0
+  double height = 0.0;  // > 0
+};
+
+// A truncated cone along +z from the centre of its base before any enclosing transform: a cone
+// when one radius is 0 (its apex at that end), a cylinder when both are equal.
+struct Frustum {
+  Vec3 base_center;
+  double bottom_radius = 0.0;  // >= 0, at base_center
+  double top_radius = 0.0;     // >= 0, at base_center + height z; not both 0
+  double height = 0.0;         // > 0
+};
+
+// A ring torus about the z axis through `center` before any enclosing transform.
+struct Torus {
+  Vec3 center;
+  double major_radius = 0.0;  // > minor_radius: from the centre to the tube's centre line
+  double minor_radius = 0.0;  // > 0: the tube's radius
+};
+
+// The closed half-space dot(normal, p) <= offset. normal need not be unit length.
+struct HalfSpace {
+  Vec3 normal;  // non-zero
+  double offset = 0.0;
+};
+
+struct Shape3;
+
+// Union and intersection take one or more operands; difference is operands[0] minus the rest.
+struct Csg3 {
+  CsgOp op = CsgOp::kUnion;
+  std::vector<Shape3> operands;  // at least one
+};
+
+// p -> scale * R(axis, angle) p + offset: rotate about the origin by `angle` radians
+// (right-handed about `axis`), then scale, then translate.
+struct Similarity3 {
+  double scale = 1.0;        // > 0
+  Vec3 axis{0.0, 0.0, 1.0};  // non-zero where angle != 0; need not be unit length
+  double angle = 0.0;        // radians
+  Vec3 offset;
+};
+
+// outer(inner(p)) as one similarity.
+Similarity3 compose(const Similarity3& outer, const Similarity3& inner);
+// scale * R p + offset.
+Vec3 apply(const Similarity3& t, Vec3 p);
+// R v alone: a direction, neither scaled nor moved.
+Vec3 rotate(const Similarity3& t, Vec3 v);
+
+// The operand is stored in a one-element vector so that Shape3 can stay a value type.
+struct Transformed3 {
+  Similarity3 transform;
+  std::vector<Shape3> operand;  // exactly one
+};
+
+struct Shape3 {
+  std::variant<Sphere, Cuboid, Cylinder, Frustum, Torus, HalfSpace, Csg3, Transformed3> node;
+  std::string name;  // boundary group name for the primitives below; may be empty
+  std::string path;  // request field path of this node, for errors
+};
+
+}  // namespace meshd

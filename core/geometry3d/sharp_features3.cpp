@@ -1,0 +1,188 @@
+#include "core/geometry3d/sharp_features3.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "core/common/error.h"
+#include "core/geometry3d/sdf3_eval.cuh"
+
+namespace meshd {
+namespace {
+
+// Points closer than this (relative to the spacing) are one: the same corner reached from two
+// primitives differs only by rounding.
+constexpr double kMergeFraction = 1e-6;
+// A feature point is on the boundary where |distance| <= kOnBoundaryFraction spacing, plus
+// rounding in the point's own coordinates.
+constexpr double kOnBoundaryFraction = 1e-9;
+constexpr double kRoundingFraction = 1e-12;
+
+Vec3 load(const double* q) { return {q[0], q[1], q[2]}; }
+
+// Keeps the first of points within `tol` of each other, in a hash grid of cells `tol` wide.
+// Cell coordinates stay doubles: coordinates up to 1e150 over a tiny tolerance overflow any
+// integer type.
+class DistinctPoints3 {
+ public:
+  DistinctPoints3(std::vector<Vec3>& points, double tol) : points_(points), tol_(tol) {}
+
+  void add(Vec3 p) {
+    const Cell c = cell(p);
+    for (double dx = -1; dx <= 1; ++dx)
+      for (double dy = -1; dy <= 1; ++dy)
+        for (double dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find({c.x + dx, c.y + dy, c.z + dz});
+          if (it == cells_.end()) continue;
+          for (size_t i : it->second)
+            if (norm(points_[i] - p) <= tol_) return;
+        }
+    cells_[c].push_back(points_.size());
+    points_.push_back(p);
+  }
+
+ private:
+  struct Cell {
+    double x, y, z;
+    bool operator==(const Cell&) const = default;
+  };
+  struct CellHash {
+    size_t operator()(const Cell& c) const {
+      const std::hash<double> h;
+      return h(c.x) ^ (h(c.y) * 0x9e3779b97f4a7c15ull) ^ (h(c.z) * 0xc2b2ae3d27d4eb4full);
+    }
+  };
+  Cell cell(Vec3 p) const {
+    return {std::floor(p.x / tol_), std::floor(p.y / tol_), std::floor(p.z / tol_)};
+  }
+
+  std::vector<Vec3>& points_;
+  double tol_;
+  std::unordered_map<Cell, std::vector<size_t>, CellHash> cells_;
+};
+
+// Collects one primitive's candidate points, counting them against the limit before any is made.
+class Sampler {
+ public:
+  Sampler(std::vector<Vec3>& out, double spacing) : out_(out), spacing_(spacing) {}
+
+  void set_primitive(const std::string& path) { path_ = &path; }
+
+  void corner(Vec3 p) {
+    reserve(1.0);
+    out_.push_back(p);
+  }
+
+  // The points strictly between a and b, at most `spacing` apart together with a and b.
+  void segment(Vec3 a, Vec3 b) {
+    const double n = std::ceil(norm(b - a) / spacing_);
+    reserve(n - 1.0);
+    for (int i = 1; i < static_cast<int>(n); ++i) out_.push_back(a + (i / n) * (b - a));
+  }
+
+  // The circle of radius r about c in the plane perpendicular to the unit vector a: at least
+  // 3 points, with arcs (so chords) of at most `spacing` between neighbours.
+  void circle(Vec3 c, Vec3 a, double r) {
+    const double n = std::max(3.0, std::ceil(2.0 * std::numbers::pi * r / spacing_));
+    reserve(n);
+    // Any unit u perpendicular to a: the cross product with the coordinate axis a leans on least.
+    const Vec3 e = std::fabs(a.x) <= std::fabs(a.y) && std::fabs(a.x) <= std::fabs(a.z)
+                       ? Vec3{1, 0, 0}
+                       : (std::fabs(a.y) <= std::fabs(a.z) ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+    Vec3 u = cross(a, e);
+    u = (1.0 / norm(u)) * u;
+    const Vec3 v = cross(a, u);
+    for (int i = 0; i < static_cast<int>(n); ++i) {
+      const double t = 2.0 * std::numbers::pi * i / n;
+      out_.push_back(c + (r * std::cos(t)) * u + (r * std::sin(t)) * v);
+    }
+  }
+
+ private:
+  void reserve(double n) {
+    count_ += n;
+    if (!(count_ <= static_cast<double>(kMaxSharpFeaturePoints))) {
+      throw_invalid(*path_, "its sharp corners and edges need more than " +
+                                std::to_string(kMaxSharpFeaturePoints) +
+                                " fixed points at the mesh's edge length; make it smaller "
+                                "relative to the edge length, or the edge length larger");
+    }
+  }
+
+  std::vector<Vec3>& out_;
+  double spacing_;
+  const std::string* path_ = nullptr;
+  double count_ = 0.0;
+};
+
+// The candidates of one primitive (program3d.h gives the layout of q).
+void sample_primitive(Op3 op, const double* q, Sampler& s) {
+  switch (op) {
+    case Op3::kCuboid: {
+      const Vec3 c = load(q);
+      const Vec3 axes[3] = {q[12] * load(q + 3), q[13] * load(q + 6), q[14] * load(q + 9)};
+      // Corner k has sign bits (x, y, z) = (k & 1, k & 2, k & 4); an edge joins two corners
+      // that differ in one bit.
+      Vec3 corners[8];
+      for (int k = 0; k < 8; ++k) {
+        corners[k] = c + (k & 1 ? 1.0 : -1.0) * axes[0] + (k & 2 ? 1.0 : -1.0) * axes[1] +
+                     (k & 4 ? 1.0 : -1.0) * axes[2];
+        s.corner(corners[k]);
+      }
+      for (int k = 0; k < 8; ++k)
+        for (int bit = 1; bit < 8; bit <<= 1)
+          if (!(k & bit)) s.segment(corners[k], corners[k | bit]);
+      return;
+    }
+    case Op3::kCylinder: {
+      const Vec3 c = load(q), a = load(q + 3);
+      s.circle(c - q[7] * a, a, q[6]);
+      s.circle(c + q[7] * a, a, q[6]);
+      return;
+    }
+    case Op3::kFrustum: {
+      const Vec3 base = load(q), a = load(q + 3), top = base + q[8] * a;
+      for (const auto& [centre, r] : {std::pair{base, q[6]}, std::pair{top, q[7]}}) {
+        if (r > 0.0)
+          s.circle(centre, a, r);
+        else
+          s.corner(centre);  // a cone's apex
+      }
+      return;
+    }
+    default:  // spheres, tori and half-spaces are smooth
+      return;
+  }
+}
+
+}  // namespace
+
+std::vector<Vec3> sharp_features3(const Program3& program, double spacing) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) {
+    throw Error(ErrorCode::kInternal, "",
+                "sharp_features3 needs a finite spacing > 0 (got " + std::to_string(spacing) + ")");
+  }
+  std::vector<Vec3> candidates;
+  Sampler sampler(candidates, spacing);
+  for (const Instruction3& ins : program.code) {
+    if (ins.primitive < 0) continue;
+    sampler.set_primitive(program.primitives[ins.primitive].path);
+    sample_primitive(ins.op, program.params.data() + ins.operand, sampler);
+  }
+
+  std::vector<Vec3> out;
+  DistinctPoints3 distinct(out, kMergeFraction * spacing);
+  const Program3View view = program.view();
+  for (Vec3 p : candidates) {
+    const double size = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    const double tol = kOnBoundaryFraction * spacing + kRoundingFraction * size;
+    if (std::fabs(eval_sdf3(view, p)) <= tol) distinct.add(p);
+  }
+  return out;
+}
+
+}  // namespace meshd

@@ -1,0 +1,33 @@
+// The quality of a tetrahedral mesh: the radius ratio q = 3 r_in / R_circ (tet_quality.cuh) and
+// the dihedral angles, summarised as the 2D report is (quality.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/common/vec3.h"
+#include "core/mesh/quality.h"
+#include "core/mesh3d/tet_quality.cuh"
+
+namespace meshd {
+
+struct TetQualityStats {
+  double q_min = 0.0;
+  double q_mean = 0.0;
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 0.0;
+  double volume = 0.0;  // the sum of the tetrahedra's, request length unit cubed
+  // histogram[k] counts tetrahedra with q in [k/10, (k+1)/10); q = 1 lands in the last bin, a
+  // turned-over one (q < 0) in the first.
+  std::array<int64_t, kQualityBins> histogram{};
+};
+
+// Per-tetrahedron radius ratio, #M. points: #N by 3; tets: #M by 4.
+std::vector<double> tet_quality(const std::vector<Vec3>& points,
+                                const std::vector<std::array<int32_t, 4>>& tets);
+
+TetQualityStats summarize_tet_quality(const std::vector<Vec3>& points,
+                                      const std::vector<std::array<int32_t, 4>>& tets);
+
+}  // namespace meshd

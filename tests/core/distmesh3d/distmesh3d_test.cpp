@@ -1,0 +1,95 @@
+#include "core/distmesh3d/distmesh3d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/common/error.h"
+#include "core/distmesh3d/geometry_domain3d.h"
+#include "core/mesh3d/tet_quality.h"
+#include "tests/core/geometry3d/shape3d_builders.h"
+
+namespace meshd {
+namespace {
+
+using testing::csg3;
+using testing::cuboid;
+using testing::sphere;
+
+double volume(const Relaxed3& r) {
+  double v = 0.0;
+  for (const auto& t : r.tets) {
+    const Vec3 a = r.points[t[0]];
+    v += dot(r.points[t[1]] - a, cross(r.points[t[2]] - a, r.points[t[3]] - a)) / 6.0;
+  }
+  return v;
+}
+
+// Every node used, every tetrahedron positive, the boundary nodes on the boundary.
+void expect_valid(const Domain3& domain, const Relaxed3& r, double h0) {
+  std::vector<char> used(r.points.size(), 0);
+  for (const auto& t : r.tets) {
+    for (int32_t v : t) used[v] = 1;
+    const Vec3 a = r.points[t[0]];
+    EXPECT_GT(dot(r.points[t[1]] - a, cross(r.points[t[2]] - a, r.points[t[3]] - a)), 0.0);
+  }
+  for (char u : used) EXPECT_TRUE(u);
+  for (const Vec3& p : r.points) EXPECT_LT(domain.distance(p), 1e-3 * h0);
+}
+
+TEST(Distmesh3d, MeshesTheUnitBallWithoutSlivers) {
+  GeometryDomain3 ball(sphere({0, 0, 0}, 1.0), 0.2);
+  ThreadPool pool(2);
+  const Relaxed3 r = distmesh3d(ball.domain(), 0.2, Params3{}, &pool);
+  EXPECT_TRUE(r.converged);
+  expect_valid(ball.domain(), r, 0.2);
+  const TetQualityStats q = summarize_tet_quality(r.points, r.tets);
+  EXPECT_GE(q.q_min, 0.2);
+  EXPECT_GE(q.q_mean, 0.85);
+  EXPECT_GE(q.min_dihedral_deg, 10.0);
+  // Chords of a sphere cut into it: about 1% of the volume at 0.2.
+  EXPECT_NEAR(volume(r), 4.0 / 3.0 * M_PI, 0.02 * 4.0 / 3.0 * M_PI);
+}
+
+TEST(Distmesh3d, ABoxStaysABox) {
+  GeometryDomain3 box(
+      csg3(CsgOp::kDifference, {cuboid({-1, -1, -1}, {1, 1, 1}), sphere({0, 0, 0}, 0.5)}), 0.25);
+  const Relaxed3 r = distmesh3d(box.domain(), 0.25, Params3{}, nullptr);
+  expect_valid(box.domain(), r, 0.25);
+  // Fixed corners and edges keep the cube's volume but for the hole's chords.
+  const double exact = 8.0 - 4.0 / 3.0 * M_PI * 0.125;
+  EXPECT_NEAR(volume(r), exact, 0.01 * exact);
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner{i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0};
+    bool found = false;
+    for (const Vec3& p : r.points) found = found || norm(p - corner) < 1e-12;
+    EXPECT_TRUE(found) << "corner " << i;
+  }
+  const TetQualityStats q = summarize_tet_quality(r.points, r.tets);
+  EXPECT_GE(q.q_min, 0.2);
+  EXPECT_GE(q.min_dihedral_deg, 10.0);
+}
+
+TEST(Distmesh3d, TheSameMeshOnAnyNumberOfThreads) {
+  GeometryDomain3 ball(sphere({0, 0, 0}, 1.0), 0.25);
+  ThreadPool one(1), three(3);
+  const Relaxed3 a = distmesh3d(ball.domain(), 0.25, Params3{}, &one);
+  const Relaxed3 b = distmesh3d(ball.domain(), 0.25, Params3{}, &three);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  ASSERT_EQ(a.tets.size(), b.tets.size());
+  for (size_t i = 0; i < a.points.size(); ++i) EXPECT_TRUE(a.points[i] == b.points[i]);
+  EXPECT_TRUE(a.tets == b.tets);
+}
+
+TEST(Distmesh3d, ABadH0IsNamed) {
+  GeometryDomain3 ball(sphere({0, 0, 0}, 1.0), 0.25);
+  try {
+    distmesh3d(ball.domain(), 0.0, Params3{}, nullptr);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "h0");
+  }
+}
+
+}  // namespace
+}  // namespace meshd

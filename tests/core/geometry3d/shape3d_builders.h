@@ -1,0 +1,47 @@
+// Short builders for 3D geometry trees in tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry3d/shape3d.h"
+
+namespace meshd::testing {
+
+inline Shape3 sphere(Vec3 c, double r, std::string name = "", std::string path = "") {
+  return Shape3{Sphere{c, r}, std::move(name), std::move(path)};
+}
+
+inline Shape3 cuboid(Vec3 lo, Vec3 hi, std::string name = "", std::string path = "") {
+  return Shape3{Cuboid{lo, hi}, std::move(name), std::move(path)};
+}
+
+inline Shape3 cylinder(Vec3 base, double r, double h, std::string path = "") {
+  return Shape3{Cylinder{base, r, h}, "", std::move(path)};
+}
+
+inline Shape3 frustum(Vec3 base, double rb, double rt, double h, std::string path = "") {
+  return Shape3{Frustum{base, rb, rt, h}, "", std::move(path)};
+}
+
+inline Shape3 torus(Vec3 c, double major, double minor, std::string path = "") {
+  return Shape3{Torus{c, major, minor}, "", std::move(path)};
+}
+
+// The half-space dot(normal, p) <= offset.
+inline Shape3 half_space(Vec3 normal, double offset, std::string path = "") {
+  return Shape3{HalfSpace{normal, offset}, "", std::move(path)};
+}
+
+inline Shape3 csg3(CsgOp op, std::vector<Shape3> operands, std::string path = "") {
+  return Shape3{Csg3{op, std::move(operands)}, "", std::move(path)};
+}
+
+inline Shape3 transformed3(Shape3 inner, const Similarity3& t, std::string path = "") {
+  Transformed3 tr;
+  tr.transform = t;
+  tr.operand.push_back(std::move(inner));
+  return Shape3{std::move(tr), "", std::move(path)};
+}
+
+}  // namespace meshd::testing
