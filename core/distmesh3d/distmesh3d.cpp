@@ -9,6 +9,9 @@
 namespace meshd {
 namespace {
 
+// Nodes closer than this (times h0) are one node (Topology3::coincident).
+constexpr double kCoincidentRelative = 0.01;
+
 // The tetrahedra's points in first use order after the fixed ones, renumbered; points no kept
 // tetrahedron uses (outside, or cut off by the centroid filter) go.
 Relaxed3 compact(std::vector<Vec3> points, std::vector<std::array<int32_t, 4>> tets,
@@ -50,15 +53,24 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   rule.max_move_factor = params.max_move_factor;
   rule.patience = params.patience;
 
+  Relaxed3 stats;
+  // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident).
+  const auto triangulate = [&](Nodes3& n, Relaxed3& counts) {
+    for (;;) {
+      Topology3 t = triangulate3d(domain, n.points, n.fixed, geps, kCoincidentRelative * h0, pool);
+      n.at_triangulation = n.points;
+      if (t.coincident.empty()) return t;
+      remove_nodes3d(n, t.coincident);
+      counts.removed += static_cast<int64_t>(t.coincident.size());
+    }
+  };
   Topology3 topology;
   BarLengths bars;
-  Relaxed3 stats;
   bool retriangulate = true;
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
     // 3. Retriangulate once a node drifted ttol of its length.
     if (retriangulate) {
-      nodes.at_triangulation = nodes.points;
-      topology = triangulate3d(domain, nodes.points, geps, pool);
+      topology = triangulate(nodes, stats);
       ++stats.retriangulations;
     }
     // 4, 5, 7, 8. Forces, move, projection.
@@ -82,7 +94,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   }
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
-  topology = triangulate3d(domain, nodes.points, geps, pool);
+  topology = triangulate(nodes, stats);
   Relaxed3 out = compact(std::move(nodes.points), std::move(topology.tets), nodes.fixed);
   out.iterations = stats.iterations;
   out.retriangulations = stats.retriangulations + 1;

@@ -19,7 +19,7 @@ struct Relaxed3 {
   std::vector<std::array<int32_t, 4>> tets;  // #M by 4, positively oriented
   int iterations = 0;
   int retriangulations = 0;
-  int64_t removed = 0;          // nodes density control took out
+  int64_t removed = 0;          // nodes density control took out, and free nodes on another node
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
   bool converged = false;
 };

@@ -11,8 +11,8 @@ constexpr size_t kChunk = 4096;
 
 }  // namespace
 
-Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, double depth,
-                        ThreadPool* pool) {
+Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
+                        double depth, double coincidence, ThreadPool* pool) {
   const std::vector<std::array<int32_t, 4>> all = delaunay_tetrahedralize(points);
   Topology3 topology;
   topology.tets = gather_chunks<std::array<int32_t, 4>>(
@@ -24,6 +24,20 @@ Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, 
         }
       });
   build_bars3d(topology, static_cast<int64_t>(points.size()));
+  // Coincident nodes share an edge of the whole triangulation, kept or not.
+  auto& close = topology.coincident;
+  close =
+      gather_chunks<int32_t>(pool, all.size(), kChunk, [&](size_t begin, size_t end, auto& out) {
+        for (size_t t = begin; t < end; ++t)
+          for (int a = 0; a < 4; ++a)
+            for (int b = a + 1; b < 4; ++b) {
+              const int32_t hi = std::max(all[t][a], all[t][b]);
+              if (hi >= fixed && norm(points[all[t][a]] - points[all[t][b]]) < coincidence)
+                out.push_back(hi);
+            }
+      });
+  std::sort(close.begin(), close.end());
+  close.erase(std::unique(close.begin(), close.end()), close.end());
   return topology;
 }
 

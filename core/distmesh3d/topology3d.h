@@ -22,12 +22,17 @@ struct Topology3 {
   std::vector<std::array<int32_t, 2>> bars;  // #B by 2, unique, lo < hi, sorted
   std::vector<int64_t> bar_offsets;          // #N + 1
   std::vector<int64_t> bar_ends;             // #2B
+  // Free nodes closer than the coincidence distance to another node, increasing: a node the
+  // projection put onto a fixed corner, with which it makes only flat tetrahedra (dropped by the
+  // centroid filter, so no bar between them lets density control see the pair).
+  std::vector<int32_t> coincident;
 };
 
-// Tetrahedralizes `points` (#N by 3) and keeps the tetrahedra whose centroid lies deeper than
-// `depth` (> 0, the request's length unit) inside `domain`.
-Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, double depth,
-                        ThreadPool* pool);
+// Tetrahedralizes `points` (#N by 3, the first `fixed` fixed) and keeps the tetrahedra whose
+// centroid lies deeper than `depth` (> 0, the request's length unit) inside `domain`; lists the
+// free nodes within `coincidence` (the same unit) of another node (of two free ones, the higher).
+Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
+                        double depth, double coincidence, ThreadPool* pool);
 
 // The unique bars of `tets` and the CSR of each of the `nodes` nodes' bars, as Topology3 holds
 // them.

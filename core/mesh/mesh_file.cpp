@@ -89,7 +89,29 @@ void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format) {
   throw Error(ErrorCode::kInternal, "", "write_mesh: unknown MeshFormat value");
 }
 
-void write_mesh_file(const Mesh& mesh, const std::string& path, MeshFormat format) {
+void write_mesh(const TetMesh& mesh, std::ostream& out, MeshFormat format) {
+  switch (format) {
+    case MeshFormat::kMsh41:
+      return write_msh41(mesh, out, MshEncoding::kAscii);
+    case MeshFormat::kMsh41Binary:
+      return write_msh41(mesh, out, MshEncoding::kBinary);
+    case MeshFormat::kMsh22:
+      return write_msh22(mesh, out);
+    case MeshFormat::kVtu:
+      return write_vtu(mesh, out);
+    case MeshFormat::kSvg:
+      throw_invalid("format",
+                    "a tetrahedral mesh has no SVG picture; allowed: msh41, "
+                    "msh41-binary, msh22, vtu");
+  }
+  throw Error(ErrorCode::kInternal, "", "write_mesh: unknown MeshFormat value");
+}
+
+namespace {
+
+// write_mesh_file for either kind of mesh.
+template <typename M>
+void write_file(const M& mesh, const std::string& path, MeshFormat format) {
   const std::string temporary = temporary_path(path);
   // Removes the temporary file on every exit but the successful rename.
   struct Cleanup {
@@ -122,6 +144,16 @@ void write_mesh_file(const Mesh& mesh, const std::string& path, MeshFormat forma
                   "cannot rename \"" + temporary + "\" to \"" + path + "\": " + error.message());
   }
   cleanup.armed = false;
+}
+
+}  // namespace
+
+void write_mesh_file(const Mesh& mesh, const std::string& path, MeshFormat format) {
+  write_file(mesh, path, format);
+}
+
+void write_mesh_file(const TetMesh& mesh, const std::string& path, MeshFormat format) {
+  write_file(mesh, path, format);
 }
 
 }  // namespace meshd

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh3d/tet_mesh.h"
 
 namespace meshd {
 
@@ -37,5 +38,9 @@ void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format);
 // (disk full); the writers' Error(kInternal) for a mesh with bad indices passes through. The
 // temporary file is removed on every failure.
 void write_mesh_file(const Mesh& mesh, const std::string& path, MeshFormat format);
+
+// The same for tetrahedra; kSvg gets Error(kInvalidArgument) naming field "format".
+void write_mesh(const TetMesh& mesh, std::ostream& out, MeshFormat format);
+void write_mesh_file(const TetMesh& mesh, const std::string& path, MeshFormat format);
 
 }  // namespace meshd

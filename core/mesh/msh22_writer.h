@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh3d/tet_mesh.h"
 
 namespace meshd {
 
@@ -19,5 +20,7 @@ namespace meshd {
 // mesh: #N points, #M triangles, #E boundary edges; triangles counter-clockwise.
 // out: any output stream.
 void write_msh22(const Mesh& mesh, std::ostream& out);
+// The same for tetrahedra (4-node tetrahedra, type 4; 3-node boundary triangles, type 2).
+void write_msh22(const TetMesh& mesh, std::ostream& out);
 
 }  // namespace meshd

@@ -4,18 +4,19 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/mesh_cells.h"
 #include "core/mesh/msh_physical_names.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
+#include "core/mesh3d/tet_validity.h"
 
 namespace meshd {
 namespace {
 
-constexpr int kSurfaceTag = 1;
-constexpr int kLineType = 1;      // 2-node line
-constexpr int kTriangleType = 2;  // 3-node triangle
-
-int curve_tag(int group) { return group + 1; }
+// The entity that holds the cells and the nodes (a surface in 2D, a volume in 3D), and the one
+// of each boundary group (curves in 2D, surfaces in 3D).
+constexpr int kDomainEntityTag = 1;
+int facet_entity_tag(int group) { return group + 1; }
 
 // Writes the values of the sections after $PhysicalNames, in either encoding: ASCII separates
 // values by spaces and ends lines where end_line() is called; binary writes the bytes of each
@@ -59,36 +60,36 @@ class MshValues {
 };
 
 struct BoundingBox {
-  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  Vec3 min, max;
   bool empty = true;
-  void add(Vec2 p) {
+  void add(Vec3 p) {
     if (empty) {
-      min_x = max_x = p.x;
-      min_y = max_y = p.y;
+      min = max = p;
       empty = false;
     }
-    min_x = std::min(min_x, p.x);
-    min_y = std::min(min_y, p.y);
-    max_x = std::max(max_x, p.x);
-    max_y = std::max(max_y, p.y);
+    min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
+    max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};
   }
   void write(MshValues& values) const {
-    values.real(min_x).real(min_y).real(0.0).real(max_x).real(max_y).real(0.0);
+    values.real(min.x).real(min.y).real(min.z).real(max.x).real(max.y).real(max.z);
   }
 };
 
-}  // namespace
-
-void write_msh41(const Mesh& mesh, std::ostream& out, MshEncoding encoding) {
+template <typename M>
+void write_msh41_cells(const M& mesh, std::ostream& out, MshEncoding encoding) {
+  using Cells = MeshCells<M>;
+  constexpr int kDim = Cells::kDimension;
   check_indices(mesh);
+  const auto& cells = Cells::cells(mesh);
+  const auto& facets = Cells::facets(mesh);
   const int num_groups = static_cast<int>(mesh.boundary_names.size());
   const uint64_t num_points = mesh.points.size();
-  const uint64_t num_edges = mesh.boundary_edges.size();
-  const uint64_t num_triangles = mesh.triangles.size();
+  const uint64_t num_facets = facets.size();
+  const uint64_t num_cells = cells.size();
 
-  // Boundary edges bucketed by group (stable, so each group keeps the mesh's order).
-  std::vector<std::vector<int64_t>> group_edges(num_groups);
-  for (size_t i = 0; i < num_edges; ++i) group_edges[mesh.boundary_tags[i]].push_back(i);
+  // Boundary facets bucketed by group (stable, so each group keeps the mesh's order).
+  std::vector<std::vector<int64_t>> group_facets(num_groups);
+  for (size_t i = 0; i < num_facets; ++i) group_facets[mesh.boundary_tags[i]].push_back(i);
 
   TextBuffer buffer(out);
   MshValues values(buffer, encoding);
@@ -99,68 +100,83 @@ void write_msh41(const Mesh& mesh, std::ostream& out, MshEncoding encoding) {
   buffer.text("$EndMeshFormat\n");
 
   // $PhysicalNames is ASCII in both encodings.
-  write_msh_physical_names(mesh, buffer);
+  write_msh_physical_names(mesh.boundary_names, kDim, buffer);
 
-  // $Entities: no points, one curve per group, one surface bounded by all curves.
+  // $Entities: no points; one entity of dimension kDim - 1 per group, one of dimension kDim
+  // bounded by all of them. The counts are of points, curves, surfaces and volumes.
   buffer.text("$Entities\n");
-  values.size(0).size(num_groups).size(1).size(0).end_line();
+  for (int d = 0; d <= 3; ++d) values.size(d == kDim - 1 ? num_groups : d == kDim ? 1 : 0);
+  values.end_line();
   for (int g = 0; g < num_groups; ++g) {
     BoundingBox box;
-    for (const int64_t i : group_edges[g]) {
-      box.add(mesh.points[mesh.boundary_edges[i][0]]);
-      box.add(mesh.points[mesh.boundary_edges[i][1]]);
-    }
-    values.integer(curve_tag(g));
+    for (const int64_t i : group_facets[g])
+      for (const int32_t v : facets[i]) box.add(Cells::point(mesh, v));
+    values.integer(facet_entity_tag(g));
     box.write(values);
     values.size(1).integer(boundary_physical_tag(g)).size(0).end_line();
   }
   BoundingBox domain_box;
-  for (const Vec2 p : mesh.points) domain_box.add(p);
-  values.integer(kSurfaceTag);
+  for (size_t i = 0; i < num_points; ++i) domain_box.add(Cells::point(mesh, i));
+  values.integer(kDomainEntityTag);
   domain_box.write(values);
   values.size(1).integer(kDomainPhysicalTag).size(num_groups);
-  for (int g = 0; g < num_groups; ++g) values.integer(curve_tag(g));
+  for (int g = 0; g < num_groups; ++g) values.integer(facet_entity_tag(g));
   values.end_line();
   values.end_section("$EndEntities");
 
-  // $Nodes: one block in the surface; tags first, then coordinates (z = 0).
+  // $Nodes: one block in the domain's entity; tags first, then coordinates.
   buffer.text("$Nodes\n");
   const uint64_t num_node_blocks = num_points > 0 ? 1 : 0;
   values.size(num_node_blocks).size(num_points).size(num_points > 0 ? 1 : 0).size(num_points);
   values.end_line();
   if (num_points > 0) {
-    values.integer(2).integer(kSurfaceTag).integer(0).size(num_points).end_line();
+    values.integer(kDim).integer(kDomainEntityTag).integer(0).size(num_points).end_line();
     for (uint64_t i = 1; i <= num_points; ++i) values.size(i).end_line();
-    for (const Vec2 p : mesh.points) values.real(p.x).real(p.y).real(0.0).end_line();
+    for (size_t i = 0; i < num_points; ++i) {
+      const Vec3 p = Cells::point(mesh, i);
+      values.real(p.x).real(p.y).real(p.z).end_line();
+    }
   }
   values.end_section("$EndNodes");
 
-  // $Elements: one block of lines per non-empty group, then the triangles.
+  // $Elements: one block of facets per non-empty group, then the cells.
   buffer.text("$Elements\n");
-  uint64_t num_blocks = num_triangles > 0 ? 1 : 0;
-  for (const auto& edges : group_edges) num_blocks += edges.empty() ? 0 : 1;
-  const uint64_t num_elements = num_edges + num_triangles;
+  uint64_t num_blocks = num_cells > 0 ? 1 : 0;
+  for (const auto& group : group_facets) num_blocks += group.empty() ? 0 : 1;
+  const uint64_t num_elements = num_facets + num_cells;
   values.size(num_blocks).size(num_elements).size(num_elements > 0 ? 1 : 0).size(num_elements);
   values.end_line();
   uint64_t tag = 1;
   for (int g = 0; g < num_groups; ++g) {
-    if (group_edges[g].empty()) continue;
-    values.integer(1).integer(curve_tag(g)).integer(kLineType).size(group_edges[g].size());
-    values.end_line();
-    for (const int64_t i : group_edges[g]) {
-      const auto& e = mesh.boundary_edges[i];
-      values.size(tag++).size(uint64_t(e[0]) + 1).size(uint64_t(e[1]) + 1).end_line();
+    if (group_facets[g].empty()) continue;
+    values.integer(kDim - 1).integer(facet_entity_tag(g)).integer(Cells::kMshFacet);
+    values.size(group_facets[g].size()).end_line();
+    for (const int64_t i : group_facets[g]) {
+      values.size(tag++);
+      for (const int32_t v : facets[i]) values.size(uint64_t(v) + 1);
+      values.end_line();
     }
   }
-  if (num_triangles > 0) {
-    values.integer(2).integer(kSurfaceTag).integer(kTriangleType).size(num_triangles).end_line();
-    for (const auto& t : mesh.triangles) {
+  if (num_cells > 0) {
+    values.integer(kDim).integer(kDomainEntityTag).integer(Cells::kMshCell).size(num_cells);
+    values.end_line();
+    for (const auto& c : cells) {
       values.size(tag++);
-      for (const int32_t v : t) values.size(uint64_t(v) + 1);
+      for (const int32_t v : c) values.size(uint64_t(v) + 1);
       values.end_line();
     }
   }
   values.end_section("$EndElements");
+}
+
+}  // namespace
+
+void write_msh41(const Mesh& mesh, std::ostream& out, MshEncoding encoding) {
+  write_msh41_cells(mesh, out, encoding);
+}
+
+void write_msh41(const TetMesh& mesh, std::ostream& out, MshEncoding encoding) {
+  write_msh41_cells(mesh, out, encoding);
 }
 
 }  // namespace meshd

@@ -1,9 +1,11 @@
 // The $PhysicalNames section, the same in MSH 2.2 and 4.1 (ASCII in both 4.1 encodings): the
-// domain (dimension 2) and one boundary group per name (dimension 1), numbered as mesh.h says.
+// domain (the mesh's dimension) and one boundary group per name (one dimension less), numbered
+// as mesh.h says.
 #pragma once
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/text_buffer.h"
@@ -18,14 +20,16 @@ inline std::string msh_quoted(const std::string& name) {
   return "\"" + s + "\"";
 }
 
-inline void write_msh_physical_names(const Mesh& mesh, TextBuffer& b) {
-  const int num_groups = static_cast<int>(mesh.boundary_names.size());
+// boundary_names: one per boundary group; dimension: 2 for triangles, 3 for tetrahedra.
+inline void write_msh_physical_names(const std::vector<std::string>& boundary_names, int dimension,
+                                     TextBuffer& b) {
+  const int num_groups = static_cast<int>(boundary_names.size());
   b.text("$PhysicalNames\n").number(num_groups + 1).character('\n');
-  b.text("2 ").number(kDomainPhysicalTag).character(' ').text(msh_quoted(kDomainGroupName));
-  b.character('\n');
+  b.number(dimension).character(' ').number(kDomainPhysicalTag).character(' ');
+  b.text(msh_quoted(kDomainGroupName)).character('\n');
   for (int g = 0; g < num_groups; ++g) {
-    b.text("1 ").number(boundary_physical_tag(g)).character(' ');
-    b.text(msh_quoted(mesh.boundary_names[g])).character('\n');
+    b.number(dimension - 1).character(' ').number(boundary_physical_tag(g)).character(' ');
+    b.text(msh_quoted(boundary_names[g])).character('\n');
   }
   b.text("$EndPhysicalNames\n");
 }

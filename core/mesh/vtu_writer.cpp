@@ -6,16 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh/quality.h"
+#include "core/mesh/mesh_cells.h"
 #include "core/mesh/text_buffer.h"
 #include "core/mesh/validity.h"
 #include "core/mesh/xml_escaped.h"
+#include "core/mesh3d/tet_validity.h"
 
 namespace meshd {
 namespace {
-
-constexpr uint8_t kVtkLine = 3;
-constexpr uint8_t kVtkTriangle = 5;
 
 // ---- Base64 (RFC 4648, with padding) -----------------------------------------------------------
 
@@ -92,13 +90,15 @@ void write_data_array(TextBuffer& b, const std::string& name, const std::vector<
   b.text("\n        </DataArray>\n");
 }
 
-}  // namespace
-
-void write_vtu(const Mesh& mesh, std::ostream& out) {
+template <typename M>
+void write_vtu_cells(const M& mesh, std::ostream& out) {
+  using Cells = MeshCells<M>;
   check_indices(mesh);
-  const size_t num_triangles = mesh.triangles.size();
-  const size_t num_edges = mesh.boundary_edges.size();
-  const size_t num_cells = num_triangles + num_edges;
+  const auto& cells = Cells::cells(mesh);
+  const auto& facets = Cells::facets(mesh);
+  const size_t num_interior = cells.size();
+  const size_t num_facets = facets.size();
+  const size_t num_cells = num_interior + num_facets;
   const double nan = std::numeric_limits<double>::quiet_NaN();
 
   TextBuffer b(out);
@@ -109,9 +109,11 @@ void write_vtu(const Mesh& mesh, std::ostream& out) {
 
   b.text("    <FieldData>\n");
   const std::string tag_dim = " NumberOfTuples=\"1\" NumberOfComponents=\"2\"";
-  write_data_array(b, kDomainGroupName, std::vector<int32_t>{kDomainPhysicalTag, 2}, tag_dim);
+  write_data_array(b, kDomainGroupName, std::vector<int32_t>{kDomainPhysicalTag, Cells::kDimension},
+                   tag_dim);
   for (size_t g = 0; g < mesh.boundary_names.size(); ++g) {
-    const std::vector<int32_t> value{boundary_physical_tag(static_cast<int>(g)), 1};
+    const std::vector<int32_t> value{boundary_physical_tag(static_cast<int>(g)),
+                                     Cells::kDimension - 1};
     write_data_array(b, mesh.boundary_names[g], value, tag_dim);
   }
   b.text("    </FieldData>\n");
@@ -122,7 +124,10 @@ void write_vtu(const Mesh& mesh, std::ostream& out) {
   b.text("      <Points>\n");
   std::vector<double> xyz;
   xyz.reserve(3 * mesh.points.size());
-  for (const Vec2 p : mesh.points) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
+  for (size_t i = 0; i < mesh.points.size(); ++i) {
+    const Vec3 p = Cells::point(mesh, i);
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  }
   write_data_array(b, "Points", xyz, " NumberOfComponents=\"3\"");
   xyz = {};
   b.text("      </Points>\n");
@@ -130,18 +135,17 @@ void write_vtu(const Mesh& mesh, std::ostream& out) {
   b.text("      <Cells>\n");
   std::vector<int64_t> connectivity, offsets;
   std::vector<uint8_t> types;
-  connectivity.reserve(3 * num_triangles + 2 * num_edges);
   offsets.reserve(num_cells);
   types.reserve(num_cells);
-  for (const auto& t : mesh.triangles) {
-    connectivity.insert(connectivity.end(), {t[0], t[1], t[2]});
+  for (const auto& c : cells) {
+    connectivity.insert(connectivity.end(), c.begin(), c.end());
     offsets.push_back(static_cast<int64_t>(connectivity.size()));
-    types.push_back(kVtkTriangle);
+    types.push_back(Cells::kVtkCell);
   }
-  for (const auto& e : mesh.boundary_edges) {
-    connectivity.insert(connectivity.end(), {e[0], e[1]});
+  for (const auto& f : facets) {
+    connectivity.insert(connectivity.end(), f.begin(), f.end());
     offsets.push_back(static_cast<int64_t>(connectivity.size()));
-    types.push_back(kVtkLine);
+    types.push_back(Cells::kVtkFacet);
   }
   write_data_array(b, "connectivity", connectivity);
   write_data_array(b, "offsets", offsets);
@@ -149,23 +153,27 @@ void write_vtu(const Mesh& mesh, std::ostream& out) {
   b.text("      </Cells>\n");
 
   b.text("      <CellData Scalars=\"quality\">\n");
-  std::vector<double> quality(num_cells, nan), min_angle(num_cells, nan);
-  for (size_t i = 0; i < num_triangles; ++i) {
-    const auto& t = mesh.triangles[i];
-    const Vec2 p0 = mesh.points[t[0]], p1 = mesh.points[t[1]], p2 = mesh.points[t[2]];
-    quality[i] = radius_ratio(p0, p1, p2);
-    min_angle[i] = min_angle_deg(p0, p1, p2);
+  std::vector<double> quality(num_cells, nan), angle(num_cells, nan);
+  for (size_t i = 0; i < num_interior; ++i) {
+    quality[i] = Cells::quality(mesh, cells[i]);
+    angle[i] = Cells::angle(mesh, cells[i]);
   }
   write_data_array(b, "quality", quality);
-  write_data_array(b, "min_angle", min_angle);
+  write_data_array(b, Cells::kAngleName, angle);
   std::vector<int32_t> physical(num_cells, kDomainPhysicalTag);
-  for (size_t i = 0; i < num_edges; ++i) {
-    physical[num_triangles + i] = boundary_physical_tag(mesh.boundary_tags[i]);
+  for (size_t i = 0; i < num_facets; ++i) {
+    physical[num_interior + i] = boundary_physical_tag(mesh.boundary_tags[i]);
   }
   write_data_array(b, "physical", physical);
   b.text("      </CellData>\n");
 
   b.text("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
 }
+
+}  // namespace
+
+void write_vtu(const Mesh& mesh, std::ostream& out) { write_vtu_cells(mesh, out); }
+
+void write_vtu(const TetMesh& mesh, std::ostream& out) { write_vtu_cells(mesh, out); }
 
 }  // namespace meshd

@@ -18,6 +18,7 @@
 #include <ostream>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh3d/tet_mesh.h"
 
 namespace meshd {
 
@@ -28,5 +29,9 @@ namespace meshd {
 // mesh: #N points, #M triangles, #E boundary edges.
 // out: any output stream.
 void write_vtu(const Mesh& mesh, std::ostream& out);
+// The same for tetrahedra: the #M tetrahedra (VTK_TETRA 10) first, then the #F boundary faces
+// (VTK_TRIANGLE 5); "min_dihedral" (degrees) in place of "min_angle"; field data {tag, dimension}
+// with the domain of dimension 3 and the groups of dimension 2.
+void write_vtu(const TetMesh& mesh, std::ostream& out);
 
 }  // namespace meshd

@@ -2,7 +2,9 @@
 // with meshio and gmsh. Usage: write_sample_meshes OUTPUT_DIR (created if missing)
 // Files: square.msh (MSH 4.1 ASCII), square_binary.msh (MSH 4.1 binary), square.msh22,
 // square.vtu, square.svg. Expected: 441 nodes, 800 triangles, 80 boundary edges, groups
-// left,right,bottom,top.
+// left,right,bottom,top. And a structured 4 x 4 x 4 cube of tetrahedra (check_tet_files.py):
+// cube.msh, cube_binary.msh, cube.msh22, cube.vtu; 125 nodes, 384 tetrahedra, 192 boundary
+// triangles, groups x0,x1,y0,y1,z0,z1, volume 1.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -10,7 +12,9 @@
 
 #include "core/mesh/mesh_file.h"
 #include "core/mesh/validity.h"
+#include "core/mesh3d/tet_validity.h"
 #include "tests/core/mesh/structured_mesh.h"
+#include "tests/core/mesh3d/structured_tet_mesh.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -39,6 +43,27 @@ int main(int argc, char** argv) {
     for (const auto& output : outputs) {
       const std::string path = dir + "/" + output.file;
       meshd::write_mesh_file(mesh, path, output.format);
+      std::printf("wrote %s (%s)\n", path.c_str(), meshd::format_name(output.format));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "write_sample_meshes: %s\n", e.what());
+    return 1;
+  }
+  const meshd::TetMesh cube = meshd::testing::structured_cube_mesh(4);
+  if (!meshd::check_tet_validity(cube).valid()) return 1;
+  const struct {
+    const char* file;
+    meshd::MeshFormat format;
+  } cube_outputs[] = {
+      {"cube.msh", meshd::MeshFormat::kMsh41},
+      {"cube_binary.msh", meshd::MeshFormat::kMsh41Binary},
+      {"cube.msh22", meshd::MeshFormat::kMsh22},
+      {"cube.vtu", meshd::MeshFormat::kVtu},
+  };
+  try {
+    for (const auto& output : cube_outputs) {
+      const std::string path = dir + "/" + output.file;
+      meshd::write_mesh_file(cube, path, output.format);
       std::printf("wrote %s (%s)\n", path.c_str(), meshd::format_name(output.format));
     }
   } catch (const std::exception& e) {

@@ -59,6 +59,7 @@ TEST(Distmesh3d, ABoxStaysABox) {
   // Fixed corners and edges keep the cube's volume but for the hole's chords.
   const double exact = 8.0 - 4.0 / 3.0 * M_PI * 0.125;
   EXPECT_NEAR(volume(r), exact, 0.01 * exact);
+  // Every corner is a node of some tetrahedron (expect_valid: every node is used).
   for (int i = 0; i < 8; ++i) {
     const Vec3 corner{i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0};
     bool found = false;

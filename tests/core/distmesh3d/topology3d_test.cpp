@@ -22,7 +22,7 @@ TEST(Topology3d, KeepsTheTetrahedraInsideWithPositiveVolume) {
   ball.distance = [](Vec3 p) { return norm(p) - 0.8; };
   const std::vector<Vec3> points = random_points(2000, 1);
   ThreadPool pool(2);
-  const Topology3 t = triangulate3d(ball, points, 0.01, &pool);
+  const Topology3 t = triangulate3d(ball, points, 0, 0.01, 1e-9, &pool);
   ASSERT_GT(t.tets.size(), 1000u);
   for (const auto& v : t.tets) {
     const Vec3 a = points[v[0]], b = points[v[1]], c = points[v[2]], d = points[v[3]];
@@ -35,7 +35,7 @@ TEST(Topology3d, BarsAreTheUniqueEdgesAndEachNodeListsItsOwn) {
   const std::vector<Vec3> points = random_points(500, 2);
   Domain3 box;
   box.distance = [](Vec3) { return -1.0; };
-  const Topology3 t = triangulate3d(box, points, 0.5, nullptr);
+  const Topology3 t = triangulate3d(box, points, 0, 0.5, 1e-9, nullptr);
   std::set<std::array<int32_t, 2>> expected;
   for (const auto& v : t.tets)
     for (int a = 0; a < 4; ++a)
@@ -54,6 +54,16 @@ TEST(Topology3d, BarsAreTheUniqueEdgesAndEachNodeListsItsOwn) {
       previous = e >> 1;
     }
   }
+}
+
+TEST(Topology3d, AFreeNodeOnAnotherIsListed) {
+  std::vector<Vec3> points = random_points(300, 3);
+  points.push_back(points[0] + Vec3{1e-7, 0.0, 0.0});  // on the fixed node 0
+  points.push_back(points[5] + Vec3{0.0, 1e-7, 0.0});  // on the free node 5
+  Domain3 box;
+  box.distance = [](Vec3) { return -1.0; };
+  const Topology3 t = triangulate3d(box, points, 1, 0.5, 1e-6, nullptr);
+  EXPECT_EQ(t.coincident, (std::vector<int32_t>{300, 301}));
 }
 
 }  // namespace

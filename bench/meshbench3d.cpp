@@ -1,0 +1,179 @@
+// meshbench3d: meshes the 3D benchmark domains with the CPU engine alone and prints one table row
+// per domain: sizes, iterations, time per phase and quality. Rows paste into RESULTS.md.
+//
+//   meshbench3d [--threads T] [--h0 H | --nodes N] [--repeat R] [-o OUT]... DOMAIN...
+//
+// DOMAIN is one of cases3d.h's names (ball, box_minus_sphere, cylinder_graded, torus). --nodes
+// picks h0 so that the initial nodes number about N; -o writes each mesh, with {name} replaced
+// by the domain's name (format from the extension: .msh .msh22 .vtu).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/cases3d.h"
+#include "core/common/error.h"
+#include "core/common/thread_pool.h"
+#include "core/distmesh3d/assemble_mesh3d.h"
+#include "core/distmesh3d/distmesh3d.h"
+#include "core/distmesh3d/geometry_domain3d.h"
+#include "core/distmesh3d/optimize_slivers3d.h"
+#include "core/mesh/mesh_file.h"
+#include "core/mesh3d/tet_quality.h"
+#include "core/mesh3d/tet_validity.h"
+
+namespace {
+
+struct Options {
+  unsigned threads = 0;
+  double h0 = 0.0;
+  double nodes = 0.0;
+  int repeat = 1;
+  std::vector<std::string> outputs;
+  std::vector<std::string> domains;
+};
+
+[[noreturn]] void usage(int code) {
+  std::fprintf(code == 0 ? stdout : stderr,
+               "usage: meshbench3d [--threads T] [--h0 H | --nodes N] [--repeat R] [-o OUT]...\n"
+               "                   DOMAIN...\n"
+               "  DOMAIN      %s\n"
+               "  --h0 H      the edge length (default: each domain's own)\n"
+               "  --nodes N   pick h0 so that the mesh has about N nodes\n"
+               "  --repeat R  mesh each domain R times and report the fastest run\n"
+               "  -o OUT      write each mesh to OUT ({name} = the domain; .msh .msh22 .vtu)\n",
+               meshd::bench::case3d_names().c_str());
+  std::exit(code);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(2);
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help")
+      usage(0);
+    else if (a == "--threads")
+      o.threads = static_cast<unsigned>(std::stoul(value()));
+    else if (a == "--h0")
+      o.h0 = std::stod(value());
+    else if (a == "--nodes")
+      o.nodes = std::stod(value());
+    else if (a == "--repeat")
+      o.repeat = std::max(1, std::stoi(value()));
+    else if (a == "-o")
+      o.outputs.push_back(value());
+    else if (!a.empty() && a[0] == '-')
+      usage(2);
+    else
+      o.domains.push_back(a);
+  }
+  if (o.domains.empty()) usage(2);
+  return o;
+}
+
+// h0 for about `nodes` nodes: the lattice keeps sqrt(2) / h0^3 nodes per unit volume where the
+// size is smallest and (h_min / h)^3 of them elsewhere (initial_points3d.h), integrated over a
+// 64^3 grid of the domain's box.
+double h0_for_nodes(const meshd::Domain3& domain, double nodes) {
+  constexpr int kCells = 64;
+  const meshd::Box3& b = domain.bounds;
+  const meshd::Vec3 step{(b.max.x - b.min.x) / kCells, (b.max.y - b.min.y) / kCells,
+                         (b.max.z - b.min.z) / kCells};
+  std::vector<double> sizes;
+  double h_min = INFINITY;
+  for (int k = 0; k < kCells; ++k)
+    for (int j = 0; j < kCells; ++j)
+      for (int i = 0; i < kCells; ++i) {
+        const meshd::Vec3 p{b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
+                            b.min.z + (k + 0.5) * step.z};
+        if (domain.distance(p) >= 0.0) continue;
+        const double h = domain.size ? domain.size(p) : 1.0;
+        sizes.push_back(h);
+        h_min = std::min(h_min, h);
+      }
+  double weighted = 0.0;
+  for (double h : sizes) weighted += std::pow(h_min / h, 3.0);
+  const double volume = weighted * step.x * step.y * step.z;
+  return std::cbrt(std::sqrt(2.0) * volume / nodes);
+}
+
+std::string expand(std::string pattern, const std::string& name) {
+  for (size_t at; (at = pattern.find("{name}")) != std::string::npos;) pattern.replace(at, 6, name);
+  return pattern;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  meshd::ThreadPool pool(opt.threads);
+  std::printf(
+      "| domain | threads | h0 | nodes | tetrahedra | iterations | retri | removed | t_relax s "
+      "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  int failures = 0;
+  for (const std::string& name : opt.domains) {
+    try {
+      const meshd::bench::Case3 c = meshd::bench::case3d(name);
+      double h0 = opt.h0 > 0.0 ? opt.h0 : c.h0;
+      if (opt.nodes > 0.0) {
+        const meshd::GeometryDomain3 probe(c.shape, h0, c.size);
+        h0 = h0_for_nodes(probe.domain(), opt.nodes);
+      }
+      const meshd::GeometryDomain3 geometry(c.shape, h0, c.size);
+      meshd::Params3 params;
+      meshd::Relaxed3 best;
+      double best_relax = INFINITY, best_slivers = 0.0;
+      for (int r = 0; r < opt.repeat; ++r) {
+        // The relaxation and the sliver optimisation timed apart.
+        params.optimize_slivers = false;
+        const auto t0 = std::chrono::steady_clock::now();
+        meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, params, &pool);
+        const auto t1 = std::chrono::steady_clock::now();
+        mesh.optimizer_moves =
+            meshd::optimize_slivers3d(geometry.domain(), params.deps * h0, mesh.points, mesh.tets,
+                                      static_cast<int64_t>(geometry.domain().fixed.size()), &pool);
+        const auto t2 = std::chrono::steady_clock::now();
+        const double relax = std::chrono::duration<double>(t1 - t0).count(),
+                     slivers = std::chrono::duration<double>(t2 - t1).count();
+        if (relax + slivers < best_relax + best_slivers) {
+          best = std::move(mesh);
+          best_relax = relax;
+          best_slivers = slivers;
+        }
+      }
+      const meshd::TetQualityStats q = meshd::summarize_tet_quality(best.points, best.tets);
+      const bool converged = best.converged;
+      std::printf(
+          "| %s | %u | %.5f | %zu | %zu | %d | %d | %lld | %.3f | %.3f | %.3f | %.3f | %.4f "
+          "| %lld | %.1f | %.1f |\n",
+          name.c_str(), pool.size(), h0, best.points.size(), best.tets.size(), best.iterations,
+          best.retriangulations, static_cast<long long>(best.removed), best_relax, best_slivers,
+          best_relax + best_slivers, q.q_min, q.q_mean,
+          static_cast<long long>(q.histogram[0] + q.histogram[1]), q.min_dihedral_deg,
+          q.max_dihedral_deg);
+      const meshd::TetMesh mesh = meshd::assemble_mesh3d(geometry.domain(), std::move(best));
+      const meshd::TetValidityReport validity = meshd::check_tet_validity(mesh);
+      if (!validity.valid()) std::printf("  INVALID: %s\n", validity.problems[0].c_str());
+      if (!converged || !validity.valid()) ++failures;
+      for (const std::string& out : opt.outputs) {
+        const std::string file = expand(out, name);
+        const auto parent = std::filesystem::path(file).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
+        meshd::write_mesh_file(mesh, file, meshd::format_from_path(file));
+      }
+    } catch (const meshd::Error& e) {
+      std::fprintf(stderr, "meshbench3d: %s: %s\n", name.c_str(), e.what());
+      ++failures;
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
