@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
   const Options opt = parse(argc, argv);
   meshd::ThreadPool pool(opt.threads);
   std::printf(
-      "| domain | threads | h0 | nodes | tetrahedra | iterations | retri | removed | t_relax s "
+      "| domain | threads | h0 | nodes | tetrahedra | iterations | retri | removed / fixed unused "
+      "| t_relax s "
       "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
@@ -138,9 +139,8 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, params, &pool);
         const auto t1 = std::chrono::steady_clock::now();
-        mesh.optimizer_moves =
-            meshd::optimize_slivers3d(geometry.domain(), params.deps * h0, mesh.points, mesh.tets,
-                                      static_cast<int64_t>(geometry.domain().fixed.size()), &pool);
+        mesh.optimizer_moves = meshd::optimize_slivers3d(geometry.domain(), params.deps * h0,
+                                                         mesh.points, mesh.tets, mesh.fixed, &pool);
         const auto t2 = std::chrono::steady_clock::now();
         const double relax = std::chrono::duration<double>(t1 - t0).count(),
                      slivers = std::chrono::duration<double>(t2 - t1).count();
@@ -153,10 +153,11 @@ int main(int argc, char** argv) {
       const meshd::TetQualityStats q = meshd::summarize_tet_quality(best.points, best.tets);
       const bool converged = best.converged;
       std::printf(
-          "| %s | %u | %.5f | %zu | %zu | %d | %d | %lld | %.3f | %.3f | %.3f | %.3f | %.4f "
+          "| %s | %u | %.5f | %zu | %zu | %d | %d | %lld / %lld | %.3f | %.3f | %.3f | %.3f | %.4f "
           "| %lld | %.1f | %.1f |\n",
           name.c_str(), pool.size(), h0, best.points.size(), best.tets.size(), best.iterations,
-          best.retriangulations, static_cast<long long>(best.removed), best_relax, best_slivers,
+          best.retriangulations, static_cast<long long>(best.removed),
+          static_cast<long long>(best.unused_fixed), best_relax, best_slivers,
           best_relax + best_slivers, q.q_min, q.q_mean,
           static_cast<long long>(q.histogram[0] + q.histogram[1]), q.min_dihedral_deg,
           q.max_dihedral_deg);

@@ -12,16 +12,26 @@ namespace {
 // Nodes closer than this (times h0) are one node (Topology3::coincident).
 constexpr double kCoincidentRelative = 0.01;
 
-// The tetrahedra's points in first use order after the fixed ones, renumbered; points no kept
-// tetrahedron uses (outside, or cut off by the centroid filter) go.
+// The tetrahedra's points, the used fixed ones first, the others in first use order,
+// renumbered; points no kept tetrahedron uses go: free ones outside or cut off by the centroid
+// filter, and fixed ones whose every tetrahedron was flat (a sample along a straight edge
+// between two neighbours on it, which the mesh's edge then follows all the same).
 Relaxed3 compact(std::vector<Vec3> points, std::vector<std::array<int32_t, 4>> tets,
                  int64_t fixed) {
   std::vector<int32_t> index(points.size(), -1);
+  std::vector<char> used(points.size(), 0);
+  for (const auto& t : tets)
+    for (int32_t v : t) used[v] = 1;
   Relaxed3 out;
   for (int64_t i = 0; i < fixed; ++i) {
+    if (!used[i]) {
+      ++out.unused_fixed;
+      continue;
+    }
     index[i] = static_cast<int32_t>(out.points.size());
     out.points.push_back(points[i]);
   }
+  out.fixed = fixed - out.unused_fixed;
   for (auto& t : tets)
     for (int32_t& v : t) {
       if (index[v] < 0) {
@@ -103,7 +113,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   // The finish: slivers, which the forces leave (optimize_slivers3d.h).
   if (params.optimize_slivers)
     out.optimizer_moves =
-        optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, nodes.fixed, pool);
+        optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, out.fixed, pool);
   return out;
 }
 

@@ -15,7 +15,9 @@ namespace meshd {
 
 // The relaxed and optimised nodes and their tetrahedra, before the boundary faces are found.
 struct Relaxed3 {
-  std::vector<Vec3> points;                  // #N by 3, fixed first, every one used
+  std::vector<Vec3> points;  // #N by 3, the `fixed` fixed ones first, all used
+  int64_t fixed = 0;
+  int64_t unused_fixed = 0;  // fixed nodes that no tetrahedron kept (compact in distmesh3d.cpp)
   std::vector<std::array<int32_t, 4>> tets;  // #M by 4, positively oriented
   int iterations = 0;
   int retriangulations = 0;
