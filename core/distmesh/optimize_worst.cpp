@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <utility>
 
+#include "core/common/colour_groups.h"
 #include "core/common/thread_pool.h"
 #include "core/distmesh/star_table.h"
 #include "core/geometry/projection.cuh"
@@ -124,27 +124,12 @@ class Optimizer {
     return nodes;
   }
 
-  // `nodes` (increasing) in groups of which no two share a triangle: each node, in order, takes
-  // the first group that none of its neighbours already took.
+  // `nodes` (increasing) in groups of which no two share a triangle (colour_groups.h).
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    std::unordered_map<int32_t, int32_t> colour;
-    colour.reserve(nodes.size());
-    std::vector<std::vector<int32_t>> groups;
-    std::vector<char> taken;
-    for (int32_t v : nodes) {
-      taken.assign(groups.size() + 1, 0);
-      for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) {
-        for (int32_t u : t_[*t]) {
-          const auto it = colour.find(u);
-          if (it != colour.end()) taken[it->second] = 1;
-        }
-      }
-      const auto c = static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
-      if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
-      groups[c].push_back(v);
-      colour[v] = c;
-    }
-    return groups;
+    return meshd::colour_groups(nodes, [&](int32_t v, auto&& visit) {
+      for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t)
+        for (int32_t u : t_[*t]) visit(u);
+    });
   }
 
   // v moved: the triangles around it must be measured again.

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
+#include "core/common/colour_groups.h"
 #include "core/distmesh3d/projection3d.h"
 #include "core/mesh3d/tet_boundary.h"
 #include "core/mesh3d/tet_quality.cuh"
@@ -93,25 +93,12 @@ class SliverOptimizer {
     return nodes;
   }
 
-  // `nodes` (increasing) in groups of which no two share a tetrahedron: each node, in order,
-  // takes the first group that none of its neighbours already took.
+  // `nodes` (increasing) in groups of which no two share a tetrahedron (colour_groups.h).
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    std::unordered_map<int32_t, int32_t> colour;
-    std::vector<std::vector<int32_t>> groups;
-    std::vector<char> taken;
-    for (int32_t v : nodes) {
-      taken.assign(groups.size() + 1, 0);
+    return meshd::colour_groups(nodes, [&](int32_t v, auto&& visit) {
       for (int64_t k = first_[v]; k < first_[v + 1]; ++k)
-        for (int32_t u : t_[star_[k]]) {
-          const auto it = colour.find(u);
-          if (it != colour.end()) taken[it->second] = 1;
-        }
-      const auto c = static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
-      if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
-      groups[c].push_back(v);
-      colour[v] = c;
-    }
-    return groups;
+        for (int32_t u : t_[star_[k]]) visit(u);
+    });
   }
 
   // How good v's star is with v at x: its worst quality up to the target, then its mean.

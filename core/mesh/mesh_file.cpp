@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <type_traits>
 
 #include "core/common/error.h"
 #include "core/mesh/msh22_writer.h"
@@ -73,7 +74,10 @@ MeshFormat parse_format_name(const std::string& name, const std::string& field) 
       field, "unknown mesh format \"" + name + "\"; allowed: msh41, msh41-binary, msh22, vtu, svg");
 }
 
-void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format) {
+namespace {
+
+template <typename M>
+void write_any_mesh(const M& mesh, std::ostream& out, MeshFormat format) {
   switch (format) {
     case MeshFormat::kMsh41:
       return write_msh41(mesh, out, MshEncoding::kAscii);
@@ -84,27 +88,25 @@ void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format) {
     case MeshFormat::kVtu:
       return write_vtu(mesh, out);
     case MeshFormat::kSvg:
-      return write_svg(mesh, out);
+      if constexpr (std::is_same_v<M, Mesh>) {
+        return write_svg(mesh, out);
+      } else {
+        throw_invalid("format",
+                      "a tetrahedral mesh has no SVG picture; allowed: msh41, msh41-binary, "
+                      "msh22, vtu");
+      }
   }
   throw Error(ErrorCode::kInternal, "", "write_mesh: unknown MeshFormat value");
 }
 
+}  // namespace
+
+void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format) {
+  write_any_mesh(mesh, out, format);
+}
+
 void write_mesh(const TetMesh& mesh, std::ostream& out, MeshFormat format) {
-  switch (format) {
-    case MeshFormat::kMsh41:
-      return write_msh41(mesh, out, MshEncoding::kAscii);
-    case MeshFormat::kMsh41Binary:
-      return write_msh41(mesh, out, MshEncoding::kBinary);
-    case MeshFormat::kMsh22:
-      return write_msh22(mesh, out);
-    case MeshFormat::kVtu:
-      return write_vtu(mesh, out);
-    case MeshFormat::kSvg:
-      throw_invalid("format",
-                    "a tetrahedral mesh has no SVG picture; allowed: msh41, "
-                    "msh41-binary, msh22, vtu");
-  }
-  throw Error(ErrorCode::kInternal, "", "write_mesh: unknown MeshFormat value");
+  write_any_mesh(mesh, out, format);
 }
 
 namespace {

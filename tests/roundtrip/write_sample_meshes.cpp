@@ -9,12 +9,39 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/mesh/mesh_file.h"
 #include "core/mesh/validity.h"
 #include "core/mesh3d/tet_validity.h"
 #include "tests/core/mesh/structured_mesh.h"
 #include "tests/core/mesh3d/structured_tet_mesh.h"
+
+namespace {
+
+struct Output {
+  const char* file;
+  meshd::MeshFormat format;
+};
+
+// Writes mesh into dir in each of outputs; false (with a message) when one fails.
+template <typename M>
+bool write_all(const M& mesh, const std::string& dir, const std::vector<Output>& outputs) {
+  try {
+    std::filesystem::create_directories(dir);
+    for (const Output& output : outputs) {
+      const std::string path = dir + "/" + output.file;
+      meshd::write_mesh_file(mesh, path, output.format);
+      std::printf("wrote %s (%s)\n", path.c_str(), meshd::format_name(output.format));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "write_sample_meshes: %s\n", e.what());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -28,48 +55,25 @@ int main(int argc, char** argv) {
     for (const auto& problem : report.problems) std::fprintf(stderr, "%s\n", problem.c_str());
     return 1;
   }
-  const struct {
-    const char* file;
-    meshd::MeshFormat format;
-  } outputs[] = {
-      {"square.msh", meshd::MeshFormat::kMsh41},
-      {"square_binary.msh", meshd::MeshFormat::kMsh41Binary},
-      {"square.msh22", meshd::MeshFormat::kMsh22},
-      {"square.vtu", meshd::MeshFormat::kVtu},
-      {"square.svg", meshd::MeshFormat::kSvg},
-  };
-  try {
-    std::filesystem::create_directories(dir);
-    for (const auto& output : outputs) {
-      const std::string path = dir + "/" + output.file;
-      meshd::write_mesh_file(mesh, path, output.format);
-      std::printf("wrote %s (%s)\n", path.c_str(), meshd::format_name(output.format));
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "write_sample_meshes: %s\n", e.what());
-    return 1;
-  }
+  const bool square_written = write_all(mesh, dir,
+                                        {{"square.msh", meshd::MeshFormat::kMsh41},
+                                         {"square_binary.msh", meshd::MeshFormat::kMsh41Binary},
+                                         {"square.msh22", meshd::MeshFormat::kMsh22},
+                                         {"square.vtu", meshd::MeshFormat::kVtu},
+                                         {"square.svg", meshd::MeshFormat::kSvg}});
+  if (!square_written) return 1;
   const meshd::TetMesh cube = meshd::testing::structured_cube_mesh(4);
-  if (!meshd::check_tet_validity(cube).valid()) return 1;
-  const struct {
-    const char* file;
-    meshd::MeshFormat format;
-  } cube_outputs[] = {
-      {"cube.msh", meshd::MeshFormat::kMsh41},
-      {"cube_binary.msh", meshd::MeshFormat::kMsh41Binary},
-      {"cube.msh22", meshd::MeshFormat::kMsh22},
-      {"cube.vtu", meshd::MeshFormat::kVtu},
-  };
-  try {
-    for (const auto& output : cube_outputs) {
-      const std::string path = dir + "/" + output.file;
-      meshd::write_mesh_file(cube, path, output.format);
-      std::printf("wrote %s (%s)\n", path.c_str(), meshd::format_name(output.format));
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "write_sample_meshes: %s\n", e.what());
+  const meshd::TetValidityReport cube_report = meshd::check_tet_validity(cube);
+  if (!cube_report.valid()) {
+    std::fprintf(stderr, "%s\n", cube_report.problems[0].c_str());
     return 1;
   }
+  const bool cube_written = write_all(cube, dir,
+                                      {{"cube.msh", meshd::MeshFormat::kMsh41},
+                                       {"cube_binary.msh", meshd::MeshFormat::kMsh41Binary},
+                                       {"cube.msh22", meshd::MeshFormat::kMsh22},
+                                       {"cube.vtu", meshd::MeshFormat::kVtu}});
+  if (!cube_written) return 1;
   std::printf("%zu nodes, %zu triangles, %zu boundary edges\n", mesh.points.size(),
               mesh.triangles.size(), mesh.boundary_edges.size());
   return 0;
