@@ -4,6 +4,8 @@
 // with positive area; every edge is shared by one triangle (a boundary edge) or two with
 // opposite orientation; every point is used; boundary_edges lists each boundary edge once,
 // oriented with the domain on its left, and boundary_tags[i] indexes boundary_names.
+// Physical groups in files are numbered as physical_groups.h says: the triangles are the domain
+// (1, dimension 2), boundary group i is i + 2 (dimension 1).
 #pragma once
 
 #include <array>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "core/common/vec2.h"
+#include "core/mesh/physical_groups.h"
 
 namespace meshd {
 
@@ -22,11 +25,5 @@ struct Mesh {
   std::vector<int32_t> boundary_tags;                  // #E, index into boundary_names
   std::vector<std::string> boundary_names;             // one per boundary group
 };
-
-// Physical group numbering shared by every writer: the domain is 1 (dimension 2), boundary group
-// i is i + 2 (dimension 1). Distinct numbers keep tools that ignore the dimension happy.
-constexpr int kDomainPhysicalTag = 1;
-inline int boundary_physical_tag(int group) { return group + 2; }
-constexpr const char* kDomainGroupName = "domain";
 
 }  // namespace meshd

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh/mesh.h"
+#include "core/mesh/physical_groups.h"
 #include "core/mesh/text_buffer.h"
 
 namespace meshd {

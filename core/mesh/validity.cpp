@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <sstream>
 
 #include "core/common/error.h"
 #include "core/mesh/boundary.h"
+#include "core/mesh/boundary_groups_validity.h"
 
 namespace meshd {
 namespace {
@@ -21,13 +21,6 @@ bool triangle_in_range(const std::array<int32_t, 3>& t, size_t num_points) {
 
 uint64_t directed_key(int32_t a, int32_t b) {
   return (uint64_t{static_cast<uint32_t>(a)} << 32) | static_cast<uint32_t>(b);
-}
-
-// Builds one problem line: "<count> <what>; first: <example>".
-std::string problem(int64_t count, const std::string& what, const std::string& example) {
-  std::ostringstream s;
-  s << count << " " << what << "; first: " << example;
-  return s.str();
 }
 
 // ---- Edge use: how many triangles use each edge, and in which directions ---------------------
@@ -126,19 +119,19 @@ void check_boundary_list(const Mesh& mesh, const std::vector<std::array<int32_t,
     }
   }
   if (report.num_reversed_boundary_edges > 0) {
-    report.problems.push_back(problem(report.num_reversed_boundary_edges,
-                                      "boundary edges have the domain on their right",
-                                      first_reversed));
+    report.problems.push_back(validity_problem(report.num_reversed_boundary_edges,
+                                               "boundary edges have the domain on their right",
+                                               first_reversed));
   }
   if (report.num_extra_boundary_edges > 0) {
-    report.problems.push_back(problem(report.num_extra_boundary_edges,
-                                      "listed boundary edges are not used by exactly one triangle",
-                                      first_extra));
+    report.problems.push_back(validity_problem(
+        report.num_extra_boundary_edges,
+        "listed boundary edges are not used by exactly one triangle", first_extra));
   }
   if (report.num_missing_boundary_edges > 0) {
-    report.problems.push_back(problem(report.num_missing_boundary_edges,
-                                      "edges used by one triangle are missing from boundary_edges",
-                                      first_missing));
+    report.problems.push_back(validity_problem(
+        report.num_missing_boundary_edges,
+        "edges used by one triangle are missing from boundary_edges", first_missing));
   }
 }
 
@@ -158,7 +151,7 @@ ValidityReport check_validity(const Mesh& mesh, double area_tolerance) {
   }
   if (report.num_nonfinite_points > 0) {
     report.problems.push_back(
-        problem(report.num_nonfinite_points, "points have non-finite coordinates", first));
+        validity_problem(report.num_nonfinite_points, "points have non-finite coordinates", first));
   }
 
   // Triangles with an index out of range take no part in the later checks, which would
@@ -183,7 +176,7 @@ ValidityReport check_validity(const Mesh& mesh, double area_tolerance) {
     }
   }
   if (report.num_bad_indices > 0) {
-    report.problems.push_back(problem(
+    report.problems.push_back(validity_problem(
         report.num_bad_indices,
         "triangles or boundary edges index points outside [0, " + std::to_string(num_points) + ")",
         first));
@@ -210,17 +203,18 @@ ValidityReport check_validity(const Mesh& mesh, double area_tolerance) {
     std::ostringstream what;
     what << "triangles are clockwise or degenerate (2 area <= " << area_tolerance
          << " longest edge^2)";
-    report.problems.push_back(problem(report.num_inverted, what.str(), first));
+    report.problems.push_back(validity_problem(report.num_inverted, what.str(), first));
   }
 
   const EdgeCounts edges = count_edge_uses(triangles);
   report.num_interior_edges = edges.interior;
   report.num_nonconforming_edges = edges.nonconforming;
   if (edges.nonconforming > 0) {
-    report.problems.push_back(problem(edges.nonconforming,
-                                      "edges are not conforming (used by more than two triangles, "
-                                      "or by two in the same direction)",
-                                      edges.first_nonconforming));
+    report.problems.push_back(
+        validity_problem(edges.nonconforming,
+                         "edges are not conforming (used by more than two triangles, "
+                         "or by two in the same direction)",
+                         edges.first_nonconforming));
   }
 
   std::vector<char> used(num_points, 0);
@@ -231,51 +225,16 @@ ValidityReport check_validity(const Mesh& mesh, double area_tolerance) {
   }
   if (report.num_unused_points > 0) {
     report.problems.push_back(
-        problem(report.num_unused_points, "points are used by no triangle", first));
+        validity_problem(report.num_unused_points, "points are used by no triangle", first));
   }
 
   check_boundary_list(mesh, triangles, report);
 
-  const size_t num_groups = mesh.boundary_names.size();
-  if (mesh.boundary_tags.size() != mesh.boundary_edges.size()) {
-    report.num_bad_tags = std::abs(static_cast<int64_t>(mesh.boundary_tags.size()) -
-                                   static_cast<int64_t>(mesh.boundary_edges.size()));
-    report.problems.push_back("boundary_tags has " + std::to_string(mesh.boundary_tags.size()) +
-                              " entries for " + std::to_string(mesh.boundary_edges.size()) +
-                              " boundary edges");
-  }
-  int64_t out_of_range_tags = 0;
-  for (size_t i = 0; i < mesh.boundary_tags.size(); ++i) {
-    const int32_t tag = mesh.boundary_tags[i];
-    if (tag >= 0 && static_cast<size_t>(tag) < num_groups) continue;
-    if (out_of_range_tags++ == 0) {
-      first = "boundary_tags[" + std::to_string(i) + "] = " + std::to_string(tag);
-    }
-  }
-  if (out_of_range_tags > 0) {
-    report.num_bad_tags += out_of_range_tags;
-    report.problems.push_back(problem(
-        out_of_range_tags,
-        "boundary tags are outside [0, " + std::to_string(num_groups) + ") (#boundary_names)",
-        first));
-  }
-
-  // Writers name physical groups after these; an empty or repeated name would merge or hide a
-  // group in every reader that looks groups up by name.
-  std::set<std::string> seen;
-  for (size_t i = 0; i < num_groups; ++i) {
-    const std::string& name = mesh.boundary_names[i];
-    if (!name.empty() && name != kDomainGroupName && seen.insert(name).second) continue;
-    if (report.num_bad_names++ == 0) {
-      first = "boundary_names[" + std::to_string(i) + "] = \"" + name + "\"";
-    }
-  }
-  if (report.num_bad_names > 0) {
-    report.problems.push_back(problem(
-        report.num_bad_names,
-        "boundary group names are empty, repeated or \"" + std::string(kDomainGroupName) + "\"",
-        first));
-  }
+  const BoundaryGroupDefects groups =
+      check_boundary_groups(mesh.boundary_tags, mesh.boundary_edges.size(), mesh.boundary_names,
+                            "boundary edges", report.problems);
+  report.num_bad_tags = groups.num_bad_tags;
+  report.num_bad_names = groups.num_bad_names;
   return report;
 }
 
@@ -307,17 +266,9 @@ void check_indices(const Mesh& mesh) {
            std::to_string(num_points) + ")");
     }
   }
-  if (mesh.boundary_tags.size() != mesh.boundary_edges.size()) {
-    fail("boundary_tags has " + std::to_string(mesh.boundary_tags.size()) + " entries for " +
-         std::to_string(mesh.boundary_edges.size()) + " boundary edges");
-  }
-  for (size_t i = 0; i < mesh.boundary_tags.size(); ++i) {
-    const int32_t tag = mesh.boundary_tags[i];
-    if (tag < 0 || static_cast<size_t>(tag) >= mesh.boundary_names.size()) {
-      fail("boundary_tags[" + std::to_string(i) + "] = " + std::to_string(tag) +
-           " is outside [0, " + std::to_string(mesh.boundary_names.size()) + ")");
-    }
-  }
+  const std::string tags = boundary_tags_problem(mesh.boundary_tags, mesh.boundary_edges.size(),
+                                                 mesh.boundary_names.size(), "boundary edges");
+  if (!tags.empty()) fail(tags);
 }
 
 }  // namespace meshd

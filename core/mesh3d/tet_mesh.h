@@ -1,10 +1,13 @@
 // A tetrahedral mesh as arrays with integer indices (libigl style), the 3D twin of mesh.h.
 //
-// Invariants of a finished mesh: every tetrahedron is positively oriented,
-// (b - a) . ((c - a) x (d - a)) > 0; every face is shared by one tetrahedron (a boundary face) or
-// two; every point is used; boundary_faces lists each boundary face once, turning
-// counter-clockwise seen from outside (its normal by the right-hand rule points out of the
-// domain), and boundary_tags[i] indexes boundary_names.
+// Invariants of a finished mesh (check_tet_validity verifies them): every tetrahedron (a, b, c, d)
+// is positively oriented, orient3d = (b - a) . ((c - a) x (d - a)) = 6 V > 0, so that a, b, c turn
+// counter-clockwise seen from d (0, e1, e2, e3 is positive); every face is shared by one
+// tetrahedron (a boundary face) or by two that list it in opposite turns; every point is used;
+// boundary_faces lists each boundary face once, turning counter-clockwise seen from outside (its
+// right-hand-rule normal points out of the domain), and boundary_tags[i] indexes boundary_names.
+// Physical groups in files are numbered as physical_groups.h says: the tetrahedra are the domain
+// (1, dimension 3), boundary group i is i + 2 (dimension 2).
 #pragma once
 
 #include <array>
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "core/common/vec3.h"
+#include "core/mesh/physical_groups.h"
 
 namespace meshd {
 

@@ -1,6 +1,7 @@
 #include "core/mesh3d/tet_quality.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace meshd {
 
@@ -14,11 +15,13 @@ std::vector<double> tet_quality(const std::vector<Vec3>& points,
   return q;
 }
 
+std::vector<double> tet_quality(const TetMesh& mesh) { return tet_quality(mesh.points, mesh.tets); }
+
 TetQualityStats summarize_tet_quality(const std::vector<Vec3>& points,
                                       const std::vector<std::array<int32_t, 4>>& tets) {
   TetQualityStats s;
   if (tets.empty()) return s;
-  s.q_min = 1.0;
+  s.q_min = std::numeric_limits<double>::infinity();
   s.min_dihedral_deg = 180.0;
   double sum = 0.0;
   for (const auto& v : tets) {
@@ -26,8 +29,9 @@ TetQualityStats summarize_tet_quality(const std::vector<Vec3>& points,
     const double q = oriented_tet_radius_ratio(a, b, c, d);
     s.q_min = std::min(s.q_min, q);
     sum += q;
-    const int bin = static_cast<int>(q * kQualityBins);
-    ++s.histogram[std::clamp(bin, 0, kQualityBins - 1)];
+    // Written so that NaN (from infinite coordinates) lands in the first bin.
+    const int bin = q > 0.0 ? std::min(static_cast<int>(q * kQualityBins), kQualityBins - 1) : 0;
+    ++s.histogram[bin];
     double lo = 0.0, hi = 0.0;
     tet_dihedral_range(a, b, c, d, lo, hi);
     s.min_dihedral_deg = std::min(s.min_dihedral_deg, lo);
@@ -36,6 +40,10 @@ TetQualityStats summarize_tet_quality(const std::vector<Vec3>& points,
   }
   s.q_mean = sum / static_cast<double>(tets.size());
   return s;
+}
+
+TetQualityStats summarize_tet_quality(const TetMesh& mesh) {
+  return summarize_tet_quality(mesh.points, mesh.tets);
 }
 
 }  // namespace meshd

@@ -10,10 +10,14 @@
 #include <vector>
 
 #include "core/common/error.h"
+#include "tests/core/mesh/file_readers.h"
 #include "tests/core/mesh/structured_mesh.h"
 
 namespace meshd {
 namespace {
+
+using testing::BinaryReader;
+using testing::section;
 
 std::string write(const Mesh& mesh, MshEncoding encoding) {
   std::ostringstream out(std::ios::binary);
@@ -22,15 +26,6 @@ std::string write(const Mesh& mesh, MshEncoding encoding) {
 }
 
 // ---- ASCII -------------------------------------------------------------------------------------
-
-// The text between "$Name\n" and "\n$EndName".
-std::string section(const std::string& file, const std::string& name) {
-  const std::string begin = "$" + name + "\n", end = "$End" + name + "\n";
-  const size_t a = file.find(begin);
-  const size_t b = file.find(end, a);
-  if (a == std::string::npos || b == std::string::npos) return "<missing>";
-  return file.substr(a + begin.size(), b - a - begin.size());
-}
 
 TEST(WriteMsh41Ascii, SectionsParseBackToTheMesh) {
   const Mesh mesh = testing::structured_square_mesh(4, 3, 2.0, 0.3);
@@ -165,34 +160,6 @@ TEST(WriteMsh41, BadIndicesThrow) {
 }
 
 // ---- Binary ------------------------------------------------------------------------------------
-
-// Reads the binary values of a MSH 4.1 file written with data-size 8 on this machine.
-class BinaryReader {
- public:
-  BinaryReader(const std::string& file, size_t at) : file_(file), at_(at) {}
-  template <typename T>
-  T get() {
-    T v{};
-    EXPECT_LE(at_ + sizeof(T), file_.size());
-    if (at_ + sizeof(T) <= file_.size()) std::memcpy(&v, file_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
-  }
-  uint64_t size() { return get<uint64_t>(); }
-  int32_t integer() { return get<int32_t>(); }
-  double real() { return get<double>(); }
-  // Expects text (such as "\n$EndNodes\n") at the current position and skips it.
-  bool expect(const std::string& text) {
-    const bool ok = file_.compare(at_, text.size(), text) == 0;
-    at_ += text.size();
-    return ok;
-  }
-  size_t position() const { return at_; }
-
- private:
-  const std::string& file_;
-  size_t at_;
-};
 
 TEST(WriteMsh41Binary, BlocksParseBackToTheMesh) {
   const Mesh mesh = testing::structured_square_mesh(5, 4, 1.0, 0.7);

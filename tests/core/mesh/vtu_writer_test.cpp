@@ -10,74 +10,19 @@
 #include <vector>
 
 #include "core/mesh/quality.h"
+#include "tests/core/mesh/file_readers.h"
 #include "tests/core/mesh/structured_mesh.h"
 
 namespace meshd {
 namespace {
 
+using testing::array_text;
+using testing::decode;
+
 std::string write(const Mesh& mesh) {
   std::ostringstream out;
   write_vtu(mesh, out);
   return out.str();
-}
-
-// An independent RFC 4648 decoder; returns false on any character outside the alphabet, a
-// length that is not a multiple of 4, or misplaced padding.
-bool base64_decode(const std::string& text, std::vector<uint8_t>& bytes) {
-  static const std::string kAlphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  if (text.size() % 4 != 0) return false;
-  bytes.clear();
-  for (size_t i = 0; i < text.size(); i += 4) {
-    uint32_t quad = 0;
-    int padding = 0;
-    for (int k = 0; k < 4; ++k) {
-      const char c = text[i + k];
-      if (c == '=') {
-        if (i + 4 != text.size() || k < 2) return false;
-        ++padding;
-        quad <<= 6;
-        continue;
-      }
-      if (padding > 0) return false;
-      const size_t v = kAlphabet.find(c);
-      if (v == std::string::npos) return false;
-      quad = (quad << 6) | static_cast<uint32_t>(v);
-    }
-    bytes.push_back(static_cast<uint8_t>(quad >> 16));
-    if (padding < 2) bytes.push_back(static_cast<uint8_t>(quad >> 8));
-    if (padding < 1) bytes.push_back(static_cast<uint8_t>(quad));
-  }
-  return true;
-}
-
-// The base64 text of the DataArray named name (the first one), or "" when absent.
-std::string array_text(const std::string& file, const std::string& name) {
-  const size_t tag = file.find("Name=\"" + name + "\"");
-  if (tag == std::string::npos) return "";
-  const size_t begin = file.find('>', tag) + 1;
-  const size_t end = file.find("</DataArray>", begin);
-  std::string text = file.substr(begin, end - begin);
-  std::erase_if(text, [](char c) { return c == ' ' || c == '\n'; });
-  return text;
-}
-
-// Decodes a binary DataArray: checks the UInt64 byte-count header and returns the values.
-template <typename T>
-std::vector<T> decode(const std::string& file, const std::string& name) {
-  std::vector<uint8_t> bytes;
-  EXPECT_TRUE(base64_decode(array_text(file, name), bytes)) << name;
-  if (bytes.size() < 8) {
-    ADD_FAILURE() << name << ": no header";
-    return {};
-  }
-  uint64_t count;
-  std::memcpy(&count, bytes.data(), 8);
-  EXPECT_EQ(count, bytes.size() - 8) << name << ": header disagrees with the data";
-  EXPECT_EQ(count % sizeof(T), 0u) << name;
-  std::vector<T> values(count / sizeof(T));
-  std::memcpy(values.data(), bytes.data() + 8, values.size() * sizeof(T));
-  return values;
 }
 
 TEST(WriteVtu, HeaderDeclaresUInt64HeadersAndTheByteOrder) {
