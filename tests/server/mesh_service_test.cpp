@@ -333,7 +333,11 @@ TEST(MeshService, CancelWhileRunningStopsWithinAnIteration) {
   auto stub = server.stub();
   const std::string id = submit(*stub, endless_request());
   ASSERT_EQ(wait_for_state(*stub, id, v1::JOB_STATE_RUNNING).state(), v1::JOB_STATE_RUNNING);
-  std::this_thread::sleep_for(100ms);
+  // Into its iterations: a fixed wait was too short under sanitizers on a loaded machine.
+  const auto running_since = std::chrono::steady_clock::now();
+  while (get_job(*stub, id).iteration() == 0 &&
+         std::chrono::steady_clock::now() - running_since < 10s)
+    std::this_thread::sleep_for(10ms);
   const auto t = std::chrono::steady_clock::now();
   ASSERT_TRUE(cancel(*stub, id).ok());
   const v1::JobInfo info = wait_for_state(*stub, id, v1::JOB_STATE_CANCELLED, 2s);
