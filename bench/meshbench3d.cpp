@@ -6,7 +6,6 @@
 // DOMAIN is one of cases3d.h's names (ball, box_minus_sphere, cylinder_graded, torus). --nodes
 // picks h0 so that the initial nodes number about N; -o writes each mesh, with {name} replaced
 // by the domain's name (format from the extension: .msh .msh22 .vtu).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,7 +20,6 @@
 #include "core/distmesh3d/assemble_mesh3d.h"
 #include "core/distmesh3d/distmesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
-#include "core/distmesh3d/optimize_slivers3d.h"
 #include "core/mesh/mesh_file.h"
 #include "core/mesh3d/tet_quality.h"
 #include "core/mesh3d/tet_validity.h"
@@ -130,26 +128,13 @@ int main(int argc, char** argv) {
         h0 = h0_for_nodes(probe.domain(), opt.nodes);
       }
       const meshd::GeometryDomain3 geometry(c.shape, h0, c.size);
-      meshd::Params3 params;
       meshd::Relaxed3 best;
-      double best_relax = INFINITY, best_slivers = 0.0;
       for (int r = 0; r < opt.repeat; ++r) {
-        // The relaxation and the sliver optimisation timed apart.
-        params.optimize_slivers = false;
-        const auto t0 = std::chrono::steady_clock::now();
-        meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, params, &pool);
-        const auto t1 = std::chrono::steady_clock::now();
-        mesh.optimizer_moves = meshd::optimize_slivers3d(geometry.domain(), params.deps * h0,
-                                                         mesh.points, mesh.tets, mesh.fixed, &pool);
-        const auto t2 = std::chrono::steady_clock::now();
-        const double relax = std::chrono::duration<double>(t1 - t0).count(),
-                     slivers = std::chrono::duration<double>(t2 - t1).count();
-        if (relax + slivers < best_relax + best_slivers) {
+        meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, meshd::Params3{}, &pool);
+        if (r == 0 || mesh.t_relax + mesh.t_slivers < best.t_relax + best.t_slivers)
           best = std::move(mesh);
-          best_relax = relax;
-          best_slivers = slivers;
-        }
       }
+      const double best_relax = best.t_relax, best_slivers = best.t_slivers;
       const meshd::TetQualityStats q = meshd::summarize_tet_quality(best.points, best.tets);
       const bool converged = best.converged;
       std::printf(

@@ -1,5 +1,7 @@
 #include "core/distmesh3d/distmesh3d.h"
 
+#include <chrono>
+
 #include "core/common/error.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
@@ -50,6 +52,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   if (!(h0 > 0.0)) throw Error(ErrorCode::kInvalidArgument, "h0", "must be > 0");
   const double geps = params.geps * h0;
 
+  const auto start = std::chrono::steady_clock::now();
   // 1-2. Initial nodes, fixed first.
   Nodes3 nodes;
   nodes.points = initial_points3d(domain, h0, params.geps, params.seed);
@@ -110,10 +113,15 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   out.retriangulations = stats.retriangulations + 1;
   out.removed = stats.removed;
   out.converged = stats.converged;
+  const auto relaxed = std::chrono::steady_clock::now();
+  out.t_relax = std::chrono::duration<double>(relaxed - start).count();
   // The finish: slivers, which the forces leave (optimize_slivers3d.h).
-  if (params.optimize_slivers)
+  if (params.optimize_slivers) {
     out.optimizer_moves =
         optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, out.fixed, pool);
+    out.t_slivers =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - relaxed).count();
+  }
   return out;
 }
 

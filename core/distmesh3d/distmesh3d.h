@@ -23,6 +23,8 @@ struct Relaxed3 {
   int retriangulations = 0;
   int64_t removed = 0;          // nodes density control took out, and free nodes on another node
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
+  double t_relax = 0.0;         // seconds: steps 1-8 and the last triangulation
+  double t_slivers = 0.0;       // seconds: the sliver optimisation
   bool converged = false;
 };
 
