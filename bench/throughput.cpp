@@ -8,9 +8,11 @@
 //
 //   throughput [--address HOST:PORT] [--jobs N] [--clients C | --rate R] [--nodes N[,N...]]
 //              [--job-backend auto|gpu|cpu] [--channels K] [--seed S] [--deadline SECONDS]
-//              [REQUEST.textproto] [-- meshd flags...]
+//              [--events] [REQUEST.textproto] [-- meshd flags...]
 //
 // --nodes rescales the request's h0 to aim at each size; every job picks one at random.
+// --events adds a line after the table: the events a job's stream carried, on average (queued
+// ones apart: a stream says queued again when its position changes, at most every 100 ms).
 #include <grpcpp/grpcpp.h>
 #include <spdlog/spdlog.h>
 
@@ -52,6 +54,7 @@ struct Options {
   std::string job_backend = "auto";  // what each request asks for
   unsigned seed = 1;
   double deadline_s = 120;
+  bool events = false;  // also print the events each job's stream carried
   std::string request;  // empty: a unit disk
 };
 
@@ -59,7 +62,7 @@ struct Options {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: throughput [--address HOST:PORT] [--jobs N] [--clients C | --rate R]\n"
                "                  [--nodes N[,N...]] [--job-backend auto|gpu|cpu]\n"
-               "                  [--channels K] [--seed S] [--deadline SECONDS]\n"
+               "                  [--channels K] [--seed S] [--deadline SECONDS] [--events]\n"
                "                  [REQUEST.textproto] [-- meshd flags...]\n");
   std::exit(code);
 }
@@ -102,6 +105,8 @@ Options parse(int argc, char** argv) {
       o.seed = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--deadline")
       o.deadline_s = std::stod(value());
+    else if (a == "--events")
+      o.events = true;
     else if (!a.empty() && a[0] == '-')
       usage(2);
     else
@@ -116,6 +121,8 @@ Options parse(int argc, char** argv) {
 struct Outcome {
   grpc::StatusCode code = grpc::StatusCode::UNKNOWN;
   bool done = false;  // the done event arrived
+  int events = 0;     // events read, of every kind
+  int queued = 0;     // queued events read (the first and each position change)
   double latency_s = 0;
   double mesh_s = 0;  // the server's own time for the mesh
   meshd::v1::JobOptions::Backend backend = meshd::v1::JobOptions::BACKEND_AUTO;
@@ -160,6 +167,8 @@ class Call final : public grpc::ClientReadReactor<MeshEvent> {
 
   void OnReadDone(bool ok) override {
     if (!ok) return;  // the stream ended: OnDone follows
+    ++outcome_.events;
+    if (event_.has_queued()) ++outcome_.queued;
     if (event_.has_done()) {
       outcome_.done = true;
       outcome_.mesh_s = event_.done().stats().t_mesh();
@@ -268,6 +277,15 @@ int report(const Options& o, const std::vector<Outcome>& outcomes, double second
               sizes.c_str(), load.c_str(), ok, ok / seconds, percentile(latency, 0.5),
               percentile(latency, 0.9), percentile(latency, 0.99), percentile(latency, 1.0),
               mesh_mean, gpu, cpu);
+  if (o.events) {
+    double events = 0, queued = 0;
+    for (const Outcome& r : outcomes) {
+      events += r.events;
+      queued += r.queued;
+    }
+    const double n = std::max<double>(1, static_cast<double>(outcomes.size()));
+    std::printf("events per job: %.1f, of them queued %.1f\n", events / n, queued / n);
+  }
   for (const auto& [what, count] : failures)
     std::printf("failed: %d jobs with %s\n", count, what.c_str());
   const bool accounted = static_cast<int>(outcomes.size()) == o.jobs;

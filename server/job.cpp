@@ -72,14 +72,14 @@ grpc::Status Job::stop_status() const {
   return stop_status_.value_or(grpc::Status(grpc::StatusCode::CANCELLED, "job cancelled"));
 }
 
-void Job::set_queue_position(int position) {
-  {
-    std::lock_guard lock(mutex_);
-    if (state_ != JobState::kQueued || (queued_seq_ > 0 && position == queue_position_)) return;
-    queue_position_ = position;
-    ++queued_seq_;
-  }
-  wake_subscribers();
+bool Job::set_queue_position(int position, Clock::time_point now) {
+  std::lock_guard lock(mutex_);
+  if (state_ != JobState::kQueued || (queued_seq_ > 0 && position == queue_position_)) return false;
+  queue_position_ = position;
+  if (queued_seq_ > 0 && now - queued_told_ < kQueuedInterval) return false;
+  queued_told_ = now;
+  ++queued_seq_;
+  return true;
 }
 
 bool Job::start(const v1::Started& started) {

@@ -5,9 +5,9 @@
 // the latest queue position, the start, the latest progress and the latest snapshot (a slow
 // reader gets the newest, never a backlog: memory per job is bounded by one snapshot), and the
 // whole encoded result (chunks are never dropped; the result is kept for retention anyway).
-// Each change bumps a sequence number and wakes the subscribers, which pull with next_event at
-// their own pace through an EventCursor of their own. Thread-safe: one mutex guards the state,
-// and subscribers are woken with it released.
+// Each change bumps a sequence number and wakes the subscribers (a queue position at most every
+// kQueuedInterval), which pull with next_event at their own pace through an EventCursor of their
+// own. Thread-safe: one mutex guards the state, and subscribers are woken with it released.
 #pragma once
 
 #include <grpcpp/support/status.h>
@@ -78,7 +78,17 @@ class Job {
   grpc::Status stop_status() const;
 
   // ---- Written by the queue and the worker -----------------------------------------------------
-  void set_queue_position(int position);
+  // How often at most a queued job's streams are told that its position changed. Each pop moves
+  // every job behind it, so telling each change costs a write per waiting job per pop; with a
+  // hundred jobs waiting that bounded the whole server near 500 jobs/s (issue 15).
+  static constexpr std::chrono::milliseconds kQueuedInterval{100};
+
+  // Records the job's place in its line (info() has it at once) at `now`. Its streams are told
+  // (a queued event with the latest position) the first time and then on a change at least
+  // kQueuedInterval after they were last told; a change within it waits for the next one, so a
+  // queue that stops moving may leave them a few places behind until it moves again. True when
+  // they should be told: the caller then calls wake_subscribers, with no lock of its own held.
+  bool set_queue_position(int position, Clock::time_point now);
   // Marks the job running; false when it was stopped while queued (then it must not run).
   bool start(const v1::Started& started);
   void publish_progress(const v1::Progress& progress);
@@ -100,10 +110,10 @@ class Job {
   // The next event for a reader at `cursor`, which it advances. kFinished sets `status`: the
   // stream ends there (OK after done).
   NextEvent next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Status& status) const;
-
- private:
+  // Tells the subscribers that something may be new; call it with no lock held.
   void wake_subscribers();
 
+ private:
   const std::string id_;
   const JobSpec spec_;
   const Backend backend_;
@@ -119,7 +129,8 @@ class Job {
   Clock::time_point started_at_{}, finished_at_{};
 
   int queue_position_ = 0;
-  uint64_t queued_seq_ = 0;
+  uint64_t queued_seq_ = 0;          // bumped each time the streams are told the position
+  Clock::time_point queued_told_{};  // when they were last told
   std::optional<v1::Started> started_;
   v1::Progress progress_;
   uint64_t progress_seq_ = 0;

@@ -16,9 +16,16 @@ double seconds_between(Job::Clock::time_point from, Job::Clock::time_point to) {
 
 }  // namespace
 
-void JobQueue::renumber(const Line& l) {
+void JobQueue::renumber(const Line& l, std::vector<std::shared_ptr<Job>>& tell) {
+  const auto now = Job::Clock::now();
   int position = 0;
-  for (const Entry& e : l) e.job->set_queue_position(position++);
+  for (const Entry& e : l) {
+    if (e.job->set_queue_position(position++, now)) tell.push_back(e.job);
+  }
+}
+
+void JobQueue::wake(const std::vector<std::shared_ptr<Job>>& tell) {
+  for (const auto& job : tell) job->wake_subscribers();
 }
 
 void JobQueue::set_gpu_workers(int count) {
@@ -28,16 +35,20 @@ void JobQueue::set_gpu_workers(int count) {
 }
 
 void JobQueue::push(std::shared_ptr<Job> job) {
-  std::lock_guard lock(mutex_);
-  if (closed_) throw Error(ErrorCode::kUnavailable, "", "the server is shutting down");
-  if (gpu_.size() + cpu_.size() + shared_.size() >= capacity_) {
-    throw Error(ErrorCode::kUnavailable, "",
-                "the job queue is full (" + std::to_string(capacity_) + " jobs); retry later");
+  std::vector<std::shared_ptr<Job>> tell;
+  {
+    std::lock_guard lock(mutex_);
+    if (closed_) throw Error(ErrorCode::kUnavailable, "", "the server is shutting down");
+    if (gpu_.size() + cpu_.size() + shared_.size() >= capacity_) {
+      throw Error(ErrorCode::kUnavailable, "",
+                  "the job queue is full (" + std::to_string(capacity_) + " jobs); retry later");
+    }
+    Line& l = line(job->backend());
+    l.insert(Entry{job->spec().options.priority, arrivals_++, std::move(job)});
+    renumber(l, tell);
+    changed_.notify_all();
   }
-  Line& l = line(job->backend());
-  l.insert(Entry{job->spec().options.priority, arrivals_++, std::move(job)});
-  renumber(l);
-  changed_.notify_all();
+  wake(tell);
 }
 
 double JobQueue::gpu_backlog(Job::Clock::time_point now) const {
@@ -87,11 +98,14 @@ std::shared_ptr<Job> JobQueue::pop(Backend worker) {
   auto [l, it] = next;
   std::shared_ptr<Job> job = it->job;
   l->erase(it);
-  renumber(*l);
+  std::vector<std::shared_ptr<Job>> tell;
+  renumber(*l, tell);
   const double expected = model_.predict(worker, job->spec().estimated_nodes);
   running_.push_back(Running{job.get(), worker,
                              Job::Clock::now() + std::chrono::duration_cast<Job::Clock::duration>(
                                                      std::chrono::duration<double>(expected))});
+  lock.unlock();
+  wake(tell);
   return job;
 }
 
@@ -108,33 +122,38 @@ void JobQueue::observe_run(Backend kind, double nodes, double seconds) {
 }
 
 bool JobQueue::remove(const Job& job) {
-  std::lock_guard lock(mutex_);
-  Line& l = line(job.backend());
-  for (auto it = l.begin(); it != l.end(); ++it) {
-    if (it->job.get() == &job) {
-      l.erase(it);
-      renumber(l);
-      return true;
-    }
+  std::vector<std::shared_ptr<Job>> tell;
+  {
+    std::lock_guard lock(mutex_);
+    Line& l = line(job.backend());
+    const auto it =
+        std::find_if(l.begin(), l.end(), [&](const Entry& e) { return e.job.get() == &job; });
+    if (it == l.end()) return false;
+    l.erase(it);
+    renumber(l, tell);
   }
-  return false;
+  wake(tell);
+  return true;
 }
 
 std::vector<std::shared_ptr<Job>> JobQueue::take_expired(Job::Clock::time_point now) {
-  std::vector<std::shared_ptr<Job>> out;
-  std::lock_guard lock(mutex_);
-  for (Line* l : {&gpu_, &cpu_, &shared_}) {
-    const size_t before = out.size();
-    for (auto it = l->begin(); it != l->end();) {
-      if (it->job->deadline() < now) {
-        out.push_back(it->job);
-        it = l->erase(it);
-      } else {
-        ++it;
+  std::vector<std::shared_ptr<Job>> out, tell;
+  {
+    std::lock_guard lock(mutex_);
+    for (Line* l : {&gpu_, &cpu_, &shared_}) {
+      const size_t before = out.size();
+      for (auto it = l->begin(); it != l->end();) {
+        if (it->job->deadline() < now) {
+          out.push_back(it->job);
+          it = l->erase(it);
+        } else {
+          ++it;
+        }
       }
+      if (out.size() != before) renumber(*l, tell);
     }
-    if (out.size() != before) renumber(*l);
   }
+  wake(tell);
   return out;
 }
 

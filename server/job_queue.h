@@ -3,8 +3,10 @@
 // Jobs wait in three lines: one for jobs that asked for the GPU, one for the CPU, and one for
 // jobs any worker may run (BACKEND_AUTO on a server with both kinds). Each line is ordered by
 // priority (higher first), then by arrival; the capacity bounds all lines together, so that a
-// full queue answers UNAVAILABLE at once instead of growing. Every change tells the waiting
-// jobs of that line their position.
+// full queue answers UNAVAILABLE at once instead of growing. Every change gives the waiting
+// jobs of that line their position (Job::set_queue_position says when their streams hear of it);
+// their streams are woken after the queue's mutex is released, so that no worker waits for
+// another job's event to be written.
 //
 // The queue is work-conserving: a free worker takes the first job of its own line or of the
 // shared line, whichever comes first. A GPU worker takes any shared job; a CPU worker takes the
@@ -79,7 +81,10 @@ class JobQueue {
   Line& line(Backend backend) {
     return backend == Backend::kGpu ? gpu_ : backend == Backend::kCpu ? cpu_ : shared_;
   }
-  void renumber(const Line& line);
+  // Gives each job of `line` its position; adds those whose streams should be told to `tell`,
+  // for wake() once the mutex is released.
+  void renumber(const Line& line, std::vector<std::shared_ptr<Job>>& tell);
+  static void wake(const std::vector<std::shared_ptr<Job>>& tell);
   // The line and entry a free worker of `worker` takes next; null when none suits it.
   std::pair<Line*, Line::iterator> next_for(Backend worker);
   Line::iterator shared_job_for_cpu();

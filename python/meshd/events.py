@@ -1,9 +1,9 @@
 """A job's events as typed Python objects, decoded from the meshd.v1.MeshEvent stream.
 
-A stream reads, in order: Queued (again when its position changes), Started, Progress and
-Snapshot interleaved, then Done, which carries the assembled Mesh. The result chunks in between
-are joined and checked (order, size, SHA-256) by EventDecoder and never shown. The sync and the
-async clients share the decoder; it does no I/O.
+A stream reads, in order: Queued (again when its position changes, at most every 0.1 s), Started,
+Progress and Snapshot interleaved, then Done, which carries the assembled Mesh. The result chunks
+in between are joined and checked (order, size, SHA-256) by EventDecoder and never shown. The sync
+and the async clients share the decoder; it does no I/O.
 """
 
 import hashlib

@@ -111,11 +111,32 @@ TEST(JobQueue, ConcurrentPushPopRemoveLosesNothing) {
   EXPECT_EQ(popped + removed + refused + static_cast<int>(left), kProducers * kPerProducer);
 }
 
+// A queued job's streams hear of its position at first, then of a change at least
+// kQueuedInterval after the last they heard of; info() has every change at once.
+TEST(JobEvents, QueuePositionsAreToldAtMostEveryInterval) {
+  auto job = make_job(1);
+  const auto t0 = Job::Clock::now();
+  EventCursor cursor;
+  v1::MeshEvent event;
+  grpc::Status status;
+  EXPECT_TRUE(job->set_queue_position(2, t0));
+  ASSERT_EQ(job->next_event(cursor, event, status), NextEvent::kEvent);
+  EXPECT_EQ(event.queued().position(), 2);
+  EXPECT_FALSE(job->set_queue_position(1, t0 + Job::kQueuedInterval / 2));
+  EXPECT_EQ(job->info().queue_position(), 1);
+  EXPECT_EQ(job->next_event(cursor, event, status), NextEvent::kNone);
+  EXPECT_FALSE(job->set_queue_position(1, t0 + 2 * Job::kQueuedInterval));  // no change
+  EXPECT_TRUE(job->set_queue_position(0, t0 + 2 * Job::kQueuedInterval));
+  ASSERT_EQ(job->next_event(cursor, event, status), NextEvent::kEvent);
+  EXPECT_EQ(event.queued().position(), 0);
+  EXPECT_EQ(job->next_event(cursor, event, status), NextEvent::kNone);
+}
+
 // A worker publishes while three readers pull at their own pace: each reader sees queued, then
 // started, then non-decreasing progress, then every chunk once and done.
 TEST(JobEvents, ReadersSeeAConsistentStreamWhileTheWorkerWrites) {
   auto job = make_job(1);
-  job->set_queue_position(0);
+  job->set_queue_position(0, Job::Clock::now());
   auto reader = [&](int pause_us, std::vector<std::string>& kinds) {
     EventCursor cursor;
     v1::MeshEvent event;
