@@ -74,9 +74,11 @@ grpc::Status Job::stop_status() const {
 
 bool Job::set_queue_position(int position, Clock::time_point now) {
   std::lock_guard lock(mutex_);
-  if (state_ != JobState::kQueued || (queued_seq_ > 0 && position == queue_position_)) return false;
+  if (state_ != JobState::kQueued) return false;
   queue_position_ = position;
-  if (queued_seq_ > 0 && now - queued_told_ < kQueuedInterval) return false;
+  if (queued_seq_ > 0 && (position == told_position_ || now - queued_told_ < kQueuedInterval))
+    return false;
+  told_position_ = position;
   queued_told_ = now;
   ++queued_seq_;
   return true;

@@ -85,9 +85,10 @@ class Job {
 
   // Records the job's place in its line (info() has it at once) at `now`. Its streams are told
   // (a queued event with the latest position) the first time and then on a change at least
-  // kQueuedInterval after they were last told; a change within it waits for the next one, so a
-  // queue that stops moving may leave them a few places behind until it moves again. True when
-  // they should be told: the caller then calls wake_subscribers, with no lock of its own held.
+  // kQueuedInterval after they were last told; a change within it is told by the next call
+  // after the interval (the queue repeats the positions periodically for that: retell). True
+  // when they should be told: the caller then calls wake_subscribers, with no lock of its own
+  // held.
   bool set_queue_position(int position, Clock::time_point now);
   // Marks the job running; false when it was stopped while queued (then it must not run).
   bool start(const v1::Started& started);
@@ -130,6 +131,7 @@ class Job {
 
   int queue_position_ = 0;
   uint64_t queued_seq_ = 0;          // bumped each time the streams are told the position
+  int told_position_ = 0;            // the position they were last told
   Clock::time_point queued_told_{};  // when they were last told
   std::optional<v1::Started> started_;
   v1::Progress progress_;

@@ -188,6 +188,7 @@ void JobManager::housekeeping() {
       finish_queued(job, grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
                                       "the job's deadline passed while it was queued"));
     }
+    queue_.retell_positions();
     lock.lock();
     while (!finished_order_.empty()) {
       const auto it = jobs_.find(finished_order_.front());

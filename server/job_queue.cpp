@@ -157,6 +157,15 @@ std::vector<std::shared_ptr<Job>> JobQueue::take_expired(Job::Clock::time_point 
   return out;
 }
 
+void JobQueue::retell_positions() {
+  std::vector<std::shared_ptr<Job>> tell;
+  {
+    std::lock_guard lock(mutex_);
+    for (const Line* l : {&gpu_, &cpu_, &shared_}) renumber(*l, tell);
+  }
+  wake(tell);
+}
+
 std::vector<std::shared_ptr<Job>> JobQueue::take_all(Backend backend) {
   std::vector<std::shared_ptr<Job>> out;
   std::lock_guard lock(mutex_);

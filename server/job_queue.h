@@ -52,6 +52,9 @@ class JobQueue {
   bool remove(const Job& job);
   // Takes out and returns the jobs whose deadline is before `now`.
   std::vector<std::shared_ptr<Job>> take_expired(Job::Clock::time_point now);
+  // Gives every waiting job its position again, so that a change withheld from its streams
+  // (Job::kQueuedInterval) reaches them even when the queue stops moving; called periodically.
+  void retell_positions();
   // Takes out and returns every job of the line of `backend` (when the last worker of a kind is
   // gone).
   std::vector<std::shared_ptr<Job>> take_all(Backend backend);

@@ -125,11 +125,35 @@ TEST(JobEvents, QueuePositionsAreToldAtMostEveryInterval) {
   EXPECT_FALSE(job->set_queue_position(1, t0 + Job::kQueuedInterval / 2));
   EXPECT_EQ(job->info().queue_position(), 1);
   EXPECT_EQ(job->next_event(cursor, event, status), NextEvent::kNone);
-  EXPECT_FALSE(job->set_queue_position(1, t0 + 2 * Job::kQueuedInterval));  // no change
-  EXPECT_TRUE(job->set_queue_position(0, t0 + 2 * Job::kQueuedInterval));
+  // The same position once the interval passed: the withheld change is told now.
+  EXPECT_TRUE(job->set_queue_position(1, t0 + 2 * Job::kQueuedInterval));
+  ASSERT_EQ(job->next_event(cursor, event, status), NextEvent::kEvent);
+  EXPECT_EQ(event.queued().position(), 1);
+  EXPECT_FALSE(job->set_queue_position(1, t0 + 4 * Job::kQueuedInterval));  // told already
+  EXPECT_TRUE(job->set_queue_position(0, t0 + 4 * Job::kQueuedInterval));
   ASSERT_EQ(job->next_event(cursor, event, status), NextEvent::kEvent);
   EXPECT_EQ(event.queued().position(), 0);
   EXPECT_EQ(job->next_event(cursor, event, status), NextEvent::kNone);
+}
+
+// A queue that stops moving still tells a stream the position withheld from it: retell.
+TEST(JobEvents, AStalledQueueRetellsWithheldPositions) {
+  JobQueue queue(10);
+  auto first = make_job(1), second = make_job(2);
+  queue.push(first);
+  queue.push(second);
+  EventCursor cursor;
+  v1::MeshEvent event;
+  grpc::Status status;
+  ASSERT_EQ(second->next_event(cursor, event, status), NextEvent::kEvent);
+  EXPECT_EQ(event.queued().position(), 1);
+  EXPECT_TRUE(queue.remove(*first));  // within the interval: withheld
+  EXPECT_EQ(second->info().queue_position(), 0);
+  EXPECT_EQ(second->next_event(cursor, event, status), NextEvent::kNone);
+  std::this_thread::sleep_for(Job::kQueuedInterval + 10ms);
+  queue.retell_positions();
+  ASSERT_EQ(second->next_event(cursor, event, status), NextEvent::kEvent);
+  EXPECT_EQ(event.queued().position(), 0);
 }
 
 // A worker publishes while three readers pull at their own pace: each reader sees queued, then
