@@ -20,6 +20,7 @@
 #include "core/distmesh3d/assemble_mesh3d.h"
 #include "core/distmesh3d/distmesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
+#include "core/distmesh3d/node_estimate3d.h"
 #include "core/mesh/mesh_file.h"
 #include "core/mesh3d/tet_quality.h"
 #include "core/mesh3d/tet_validity.h"
@@ -77,32 +78,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// h0 for about `nodes` nodes: the lattice keeps sqrt(2) / h0^3 nodes per unit volume where the
-// size is smallest and (h_min / h)^3 of them elsewhere (initial_points3d.h), integrated over a
-// 64^3 grid of the domain's box.
-double h0_for_nodes(const meshd::Domain3& domain, double nodes) {
-  constexpr int kCells = 64;
-  const meshd::Box3& b = domain.bounds;
-  const meshd::Vec3 step{(b.max.x - b.min.x) / kCells, (b.max.y - b.min.y) / kCells,
-                         (b.max.z - b.min.z) / kCells};
-  std::vector<double> sizes;
-  double h_min = INFINITY;
-  for (int k = 0; k < kCells; ++k)
-    for (int j = 0; j < kCells; ++j)
-      for (int i = 0; i < kCells; ++i) {
-        const meshd::Vec3 p{b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
-                            b.min.z + (k + 0.5) * step.z};
-        if (domain.distance(p) >= 0.0) continue;
-        const double h = domain.size ? domain.size(p) : 1.0;
-        sizes.push_back(h);
-        h_min = std::min(h_min, h);
-      }
-  double weighted = 0.0;
-  for (double h : sizes) weighted += std::pow(h_min / h, 3.0);
-  const double volume = weighted * step.x * step.y * step.z;
-  return std::cbrt(std::sqrt(2.0) * volume / nodes);
-}
-
 std::string expand(std::string pattern, const std::string& name) {
   for (size_t at; (at = pattern.find("{name}")) != std::string::npos;) pattern.replace(at, 6, name);
   return pattern;
@@ -125,7 +100,9 @@ int main(int argc, char** argv) {
       double h0 = opt.h0 > 0.0 ? opt.h0 : c.h0;
       if (opt.nodes > 0.0) {
         const meshd::GeometryDomain3 probe(c.shape, h0, c.size);
-        h0 = h0_for_nodes(probe.domain(), opt.nodes);
+        const meshd::Domain3& d = probe.domain();
+        h0 = meshd::h0_for_node_count3d(meshd::weighted_volume3d(d.distance, d.size, d.bounds),
+                                        opt.nodes);
       }
       const meshd::GeometryDomain3 geometry(c.shape, h0, c.size);
       meshd::Relaxed3 best;

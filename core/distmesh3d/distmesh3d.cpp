@@ -48,7 +48,12 @@ Relaxed3 compact(std::vector<Vec3> points, std::vector<std::array<int32_t, 4>> t
 
 }  // namespace
 
-Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool) {
+Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool,
+                    Observer* observer, const std::atomic<bool>* cancel) {
+  const auto check_cancel = [cancel] {
+    if (cancel != nullptr && cancel->load(std::memory_order_relaxed))
+      throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
+  };
   if (!(h0 > 0.0)) throw Error(ErrorCode::kInvalidArgument, "h0", "must be > 0");
   const double geps = params.geps * h0;
 
@@ -81,6 +86,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   BarLengths bars;
   bool retriangulate = true;
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
+    check_cancel();
     // 3. Retriangulate once a node drifted ttol of its length.
     if (retriangulate) {
       topology = triangulate(nodes, stats);
@@ -89,6 +95,16 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
     // 4, 5, 7, 8. Forces, move, projection.
     const StepResult step = step3d(domain, params, h0, topology, nodes, bars, pool);
     stats.iterations = iteration;
+    if (observer != nullptr) {
+      Progress progress;
+      progress.iteration = iteration;
+      progress.max_move = step.max_move;
+      progress.retriangulations = stats.retriangulations;
+      progress.nodes = static_cast<int64_t>(nodes.points.size());
+      progress.elapsed_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      observer->on_progress(progress);
+    }
     rule.settling = rule.settle(rule.settling, step);
     if (rule.converged(step, iteration, rule.settling)) {
       stats.converged = true;
@@ -117,6 +133,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   out.t_relax = std::chrono::duration<double>(relaxed - start).count();
   // The finish: slivers, which the forces leave (optimize_slivers3d.h).
   if (params.optimize_slivers) {
+    check_cancel();
     out.optimizer_moves =
         optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, out.fixed, pool);
     out.t_slivers =

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
 #include "core/common/thread_pool.h"
 #include "core/common/vec3.h"
+#include "core/distmesh/observer.h"
 #include "core/distmesh3d/domain3d.h"
 #include "core/distmesh3d/params3d.h"
 
@@ -30,7 +32,9 @@ struct Relaxed3 {
 
 // Meshes `domain` with tetrahedra of edge about h0 times its size field (h0 > 0, the request's
 // length unit). `pool` may be null (the caller's thread alone); the result is the same for any
-// number of threads.
-Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool);
+// number of threads. `observer` (may be null) hears of every step's progress (no snapshots in
+// 3D yet); throws Error(kCancelled) within one step once `cancel` (may be null) is set.
+Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool,
+                    Observer* observer = nullptr, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace meshd

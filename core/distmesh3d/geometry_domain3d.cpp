@@ -11,7 +11,8 @@
 
 namespace meshd {
 
-GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size)
+GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size,
+                                 bool sharp_features)
     : program_(compile_geometry3(shape)) {
   // Primitives that share a name share a boundary group, in the order of first appearance.
   for (const PrimitiveInfo3& info : program_.primitives) {
@@ -29,6 +30,7 @@ GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<d
     return owner >= 0 ? group_of_primitive_[owner] : 0;
   };
   domain_.bounds = domain_bounds3(program_);
+  if (!sharp_features) return;
 
   // Sharp edges sampled at the finest size along them: a spacing that varied along an edge
   // would need the sampling to follow the field (left for later); a uniform field needs none.

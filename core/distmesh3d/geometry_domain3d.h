@@ -17,7 +17,9 @@ class GeometryDomain3 {
   // Compiles `shape` (throws Error naming the field for a bad one) and samples its sharp edges
   // about h0 times the size field's smallest value along them apart. size: the relative edge
   // length h(p) > 0, or empty for a uniform field. h0 > 0 in the request's length unit.
-  GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size = {});
+  // sharp_features false: no fixed nodes (the sharp edges are rounded at about h0).
+  GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size = {},
+                  bool sharp_features = true);
   // The domain's callables point into this object.
   GeometryDomain3(const GeometryDomain3&) = delete;
   GeometryDomain3& operator=(const GeometryDomain3&) = delete;

@@ -1,0 +1,41 @@
+#include "core/distmesh3d/generate_mesh3d.h"
+
+#include <chrono>
+#include <utility>
+
+#include "core/distmesh3d/assemble_mesh3d.h"
+#include "core/distmesh3d/distmesh3d.h"
+#include "core/distmesh3d/geometry_domain3d.h"
+
+namespace meshd {
+
+MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer* observer,
+                            const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  // The loop spaces its finest nodes h0 apart wherever h is smallest: rescale so that h0 means
+  // the edge length where h is at its lowest bound, as in 2D.
+  const double low = size_range3(problem.size).low;
+  std::function<double(Vec3)> size = compile_size_field3(problem.size);
+  if (size) size = [h = std::move(size), low](Vec3 p) { return h(p) / low; };
+  const double h0 = problem.h0 * low;
+  const GeometryDomain3 geometry(problem.geometry, h0, size, problem.auto_features);
+
+  Relaxed3 relaxed = distmesh3d(geometry.domain(), h0, problem.params, pool, observer, cancel);
+  MeshResult3 out;
+  out.stats.iterations = relaxed.iterations;
+  out.stats.converged = relaxed.converged;
+  out.stats.retriangulations = relaxed.retriangulations;
+  out.stats.removed = relaxed.removed;
+  out.stats.fixed = relaxed.fixed;
+  out.stats.unused_fixed = relaxed.unused_fixed;
+  out.stats.optimizer_moves = relaxed.optimizer_moves;
+  out.stats.t_relax = relaxed.t_relax;
+  out.stats.t_slivers = relaxed.t_slivers;
+  out.mesh = assemble_mesh3d(geometry.domain(), std::move(relaxed));
+  out.quality = summarize_tet_quality(out.mesh);
+  out.stats.t_total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace meshd
