@@ -128,6 +128,8 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
       o.label = next();
     else if (a == "--circle")
       o.circle = number(a, next());
+    else if (a == "--sphere")
+      o.sphere = number(a, next());
     else if (a == "--hole")
       o.hole = number(a, next());
     else if (a == "--h0")
@@ -209,7 +211,8 @@ Connection flags (every command):
   const std::string request_flags = R"(
 Request (a text-format meshd.v1.MeshRequest file, or flags for simple shapes):
   --circle R | --rectangle W,H   a disk of radius R, or a W x H rectangle, centred at 0
-  --hole R                       minus a disk of radius R at the centre
+  --sphere R                     a ball of radius R, centred at 0: tetrahedra (3D)
+  --hole R                       minus a disk (a ball, with --sphere) of radius R at the centre
   --h0 H                         edge length (required with the shape flags)
   --seed N
 Signed-distance grid (DistMesh's dmatrix: a segmented image's distance transform):

@@ -30,6 +30,7 @@ struct CliOptions {
   std::string label;
   // A request without a file: --circle R | --rectangle W,H, optionally --hole R, and --h0.
   std::optional<double> circle, hole, h0;
+  std::optional<double> sphere;  // --sphere R: a volume request, a ball (minus --hole R)
   std::optional<std::pair<double, double>> rectangle;
   std::optional<uint64_t> seed;
   // An imported outline (--import FILE and its flags); gis.simplify_tolerance stays 0 here:

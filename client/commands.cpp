@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <variant>
 
 #include "client/event_view.h"
 #include "client/exit_codes.h"
@@ -55,11 +56,11 @@ int report_error(const Error& e) {
   return e.code() == ErrorCode::kInvalidArgument ? kExitBadRequest : kExitBadResult;
 }
 
-void write_outputs(const Mesh& mesh, const CliOptions& o) {
+void write_outputs(const std::variant<Mesh, TetMesh>& mesh, const CliOptions& o) {
   for (const std::string& path : o.outputs) {
     const MeshFormat format =
         o.format.empty() ? format_from_path(path, "-o") : parse_format_name(o.format, "--format");
-    write_mesh_file(mesh, path, format);
+    std::visit([&](const auto& m) { write_mesh_file(m, path, format); }, mesh);
     if (!o.json) std::printf("wrote %s (%s)\n", path.c_str(), format_name(format));
   }
 }
@@ -79,7 +80,7 @@ int follow(grpc::ClientReaderInterface<v1::MeshEvent>& reader, const CliOptions&
       if (event.has_snapshot() && frames) frames->write(event.snapshot());
       if (event.has_result_chunk()) assembly.add(event.result_chunk());
       if (event.has_done()) {
-        const Mesh mesh = assembly.finish(event.done());
+        const std::variant<Mesh, TetMesh> mesh = assembly.finish(event.done());
         view.summary(event.done(), event.job_id());
         write_outputs(mesh, o);
         if (frames && !o.json)
@@ -109,8 +110,8 @@ v1::MeshRequest checked_request(const CliOptions& o) {
 // meshctl request: the request generate would send, in text format, to -o FILE or stdout, so
 // that an import or the shape flags can be kept, edited and rerun (by meshctl or meshbench).
 int write_request(const CliOptions& o) {
-  if (o.outputs.size() > 1) throw_invalid("-o", "request writes one file (got " +
-                                                    std::to_string(o.outputs.size()) + ")");
+  if (o.outputs.size() > 1)
+    throw_invalid("-o", "request writes one file (got " + std::to_string(o.outputs.size()) + ")");
   std::string text =
       "# proto-file: meshd/v1/request.proto\n# proto-message: meshd.v1.MeshRequest\n";
   std::string body;

@@ -15,7 +15,7 @@ void ResultAssembly::add(const v1::ResultChunk& chunk) {
   payload_ += chunk.data();
 }
 
-Mesh ResultAssembly::finish(const v1::Done& done) const {
+std::variant<Mesh, TetMesh> ResultAssembly::finish(const v1::Done& done) const {
   if (payload_.size() != done.result_bytes()) {
     throw Error(ErrorCode::kInternal, "result",
                 "received " + std::to_string(payload_.size()) + " bytes, the server sent " +
@@ -26,7 +26,42 @@ Mesh ResultAssembly::finish(const v1::Done& done) const {
   v1::MeshData data;
   if (!data.ParseFromString(payload_))
     throw Error(ErrorCode::kInternal, "result", "the received mesh does not parse");
+  if (data.dimension() == 3) return to_tet_mesh(data);
   return to_mesh(data);
+}
+
+namespace {
+
+// An index into `count` nodes or groups, or Error(kInternal) naming what it indexes.
+int32_t checked_index(int32_t v, size_t count, const char* what) {
+  if (v < 0 || static_cast<size_t>(v) >= count)
+    throw Error(ErrorCode::kInternal, "result", std::string(what) + " index out of range");
+  return v;
+}
+
+}  // namespace
+
+TetMesh to_tet_mesh(const v1::MeshData& data) {
+  TetMesh mesh;
+  const int n = data.points_size() / 3;
+  mesh.points.reserve(n);
+  for (int i = 0; i < n; ++i)
+    mesh.points.push_back({data.points(3 * i), data.points(3 * i + 1), data.points(3 * i + 2)});
+  const auto node = [n](int32_t v) { return checked_index(v, static_cast<size_t>(n), "node"); };
+  for (int i = 0; i + 3 < data.tetrahedra_size(); i += 4) {
+    mesh.tets.push_back({node(data.tetrahedra(i)), node(data.tetrahedra(i + 1)),
+                         node(data.tetrahedra(i + 2)), node(data.tetrahedra(i + 3))});
+  }
+  for (int i = 0; i + 2 < data.boundary_faces_size(); i += 3) {
+    mesh.boundary_faces.push_back({node(data.boundary_faces(i)), node(data.boundary_faces(i + 1)),
+                                   node(data.boundary_faces(i + 2))});
+  }
+  mesh.boundary_names.assign(data.boundary_names().begin(), data.boundary_names().end());
+  for (int32_t tag : data.boundary_tags())
+    mesh.boundary_tags.push_back(checked_index(tag, mesh.boundary_names.size(), "boundary tag"));
+  if (mesh.boundary_tags.size() != mesh.boundary_faces.size())
+    throw Error(ErrorCode::kInternal, "result", "boundary tags and faces differ in number");
+  return mesh;
 }
 
 Mesh to_mesh(const v1::MeshData& data) {

@@ -39,6 +39,24 @@ v1::Shape shape_from_flags(const CliOptions& o) {
   return shape;
 }
 
+// --sphere R: a ball, minus the hole.
+v1::Volume volume_from_flags(const CliOptions& o) {
+  v1::Volume volume;
+  v1::Shape3 outer;
+  outer.mutable_sphere()->set_radius(*o.sphere);
+  outer.set_name("outer");
+  if (!o.hole) {
+    *volume.mutable_geometry() = outer;
+    return volume;
+  }
+  auto* difference = volume.mutable_geometry()->mutable_difference();
+  *difference->mutable_base() = outer;
+  v1::Shape3* hole = difference->add_subtract();
+  hole->mutable_sphere()->set_radius(*o.hole);
+  hole->set_name("hole");
+  return volume;
+}
+
 // The default boundary-group name: the layer's name with what a group name may not hold
 // replaced by '_', at most 64 characters.
 std::string group_name(const std::string& layer) {
@@ -164,7 +182,9 @@ void add_size_flags(const CliOptions& o, v1::MeshRequest& request) {
 v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) {
   const bool importing = !o.gis.path.empty();
   if (!importing) check_no_import_flags(o);
-  const bool shape = o.circle || o.rectangle;
+  const bool shape = o.circle || o.rectangle || o.sphere;
+  if (o.sphere && (o.circle || o.rectangle))
+    throw_invalid("--sphere", "give --sphere, --circle or --rectangle, one of them");
   check_sdf_grid_flags(o, shape, importing);
   const bool grid = !o.sdf_grid.empty();
   if (importing && shape)
@@ -186,14 +206,17 @@ v1::MeshRequest build_request(const CliOptions& o, std::string* import_summary) 
                        o.sdf_grid_spacing.value_or(Vec2{1.0, 1.0}),
                        group_name(std::filesystem::path(o.sdf_grid).stem().string()));
   } else if (shape) {
-    if (!o.h0) throw_invalid("--h0", "required with --circle or --rectangle");
-    *request.mutable_geometry() = shape_from_flags(o);
+    if (!o.h0) throw_invalid("--h0", "required with --circle, --rectangle or --sphere");
+    if (o.sphere)
+      *request.mutable_volume() = volume_from_flags(o);
+    else
+      *request.mutable_geometry() = shape_from_flags(o);
   } else if (!o.args.empty()) {
     request = read_request_file(o.args[0]);
   } else if (!o.h0) {
     throw_invalid("--h0", "required with --import when no request file is given");
   }
-  if (!shape && o.hole) throw_invalid("--hole", "only with --circle or --rectangle");
+  if (!shape && o.hole) throw_invalid("--hole", "only with --circle, --rectangle or --sphere");
   if (o.h0) request.set_h0(*o.h0);
   if (importing) import_into(o, request, import_summary);
   add_size_flags(o, request);

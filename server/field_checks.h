@@ -2,6 +2,7 @@
 // uses: the value as the user wrote it, and the checks that name the field and the allowed range.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "core/common/vec2.h"
@@ -26,5 +27,19 @@ double positive(double v, const std::string& field);
 
 // The point, each coordinate checked by finite() as field + ".x" and ".y".
 Vec2 to_vec2(const v1::Vec2& v, const std::string& field);
+
+// An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
+std::string approx(double v);
+
+// A boundary group's name: 1 to 64 letters, digits, '_', '-' or '.', not the domain's own
+// group name; Error(kInvalidArgument) naming `field` otherwise.
+void check_name(const std::string& name, const std::string& field);
+
+// A size term's h_max: finite and at least its h_min.
+double at_least_h_min(double h_max, double h_min, const std::string& field);
+
+// Checks lo < v <= hi (lo_open) or lo <= v <= hi; NaN fails either.
+double in_range(double v, double lo, bool lo_open, double hi, const std::string& field);
+int in_range(uint32_t v, uint32_t lo, uint32_t hi, const std::string& field);
 
 }  // namespace meshd

@@ -1,10 +1,13 @@
-// A validated job: the Problem to mesh and how the service runs it (request_conversion makes it).
+// A validated job: the Problem (or Problem3) to mesh and how the service runs it
+// (request_conversion makes it).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/distmesh/problem.h"
+#include "core/distmesh3d/problem3d.h"
 
 namespace meshd {
 
@@ -23,7 +26,8 @@ struct JobOptions {
 };
 
 struct JobSpec {
-  Problem problem;
+  Problem problem;                 // a plane job; unused when volume is set
+  std::optional<Problem3> volume;  // a 3D job
   double estimated_nodes = 0;
   JobOptions options;
 };

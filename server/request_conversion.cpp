@@ -18,6 +18,7 @@
 #include "server/distance_grid_conversion.h"
 #include "server/field_checks.h"
 #include "server/size_grid_conversion.h"
+#include "server/volume_conversion.h"
 
 namespace meshd {
 namespace {
@@ -25,57 +26,12 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Messages: estimates (field_checks.h has the value as the user wrote it).
 
-// An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
-std::string approx(double v) {
-  if (std::isfinite(v) && std::fabs(v) >= 100 && std::fabs(v) < 1e18) {
-    return std::to_string(std::llround(v));
-  }
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", v);
-  return buffer;
-}
-
 // A box given by its corners: max above min in both coordinates.
 void check_min_below_max(Vec2 min, Vec2 max, const std::string& field) {
   if (!(max.x > min.x))
     throw_invalid(field + ".max.x", "must be > min.x = " + num(min.x) + got(max.x));
   if (!(max.y > min.y))
     throw_invalid(field + ".max.y", "must be > min.y = " + num(min.y) + got(max.y));
-}
-
-// ---------------------------------------------------------------------------------------------
-// Names: [A-Za-z0-9_.-]{1,64}.
-
-constexpr size_t kMaxNameLength = 64;
-
-bool name_char(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-         c == '-' || c == '.';
-}
-
-void check_name(const std::string& name, const std::string& field) {
-  const std::string allowed = "; a name is 1 to 64 letters, digits, '_', '-' or '.'";
-  // The output files name the domain's own physical group so; a boundary group may not.
-  if (name == kDomainGroupName) {
-    throw_invalid(field, "\"" + name + "\" is reserved for the domain's own group" + allowed +
-                             ", other than \"" + kDomainGroupName + "\"");
-  }
-  if (name.size() > kMaxNameLength) {
-    throw_invalid(field, "is " + std::to_string(name.size()) + " characters long" + allowed);
-  }
-  for (size_t i = 0; i < name.size(); ++i) {
-    if (name_char(name[i])) continue;
-    // Printable characters are shown as they are; anything else by its byte value.
-    const auto byte = static_cast<unsigned char>(name[i]);
-    char shown[8];
-    if (byte >= 0x20 && byte < 0x7f) {
-      shown[0] = '\'', shown[1] = name[i], shown[2] = '\'', shown[3] = '\0';
-    } else {
-      std::snprintf(shown, sizeof shown, "0x%02x", byte);
-    }
-    throw_invalid(field,
-                  "character " + std::to_string(i) + " (" + shown + ") is not allowed" + allowed);
-  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -247,13 +203,6 @@ constexpr double kMaxGradation = 10;
 // The most edges a feature-size term may ask for across a narrow part.
 constexpr double kMaxFeatureElements = 1000;
 
-// A term's h_max: finite and at least its h_min.
-double at_least_h_min(double h_max, double h_min, const std::string& field) {
-  if (!(std::isfinite(h_max) && h_max >= h_min))
-    throw_invalid(field, "must be finite and >= h_min = " + num(h_min) + got(h_max));
-  return h_max;
-}
-
 SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits& limits) {
   SizeFieldSpec out;
   if (!request.has_size()) return out;
@@ -350,24 +299,6 @@ SizeFieldSpec size_field(const v1::MeshRequest& request, const ConversionLimits&
 
 // ---------------------------------------------------------------------------------------------
 // DistMesh parameters: each optional, checked against the range its proto comment states.
-
-// Checks lo < v <= hi (lo_open) or lo <= v <= hi; NaN fails either.
-double in_range(double v, double lo, bool lo_open, double hi, const std::string& field) {
-  const bool ok = (lo_open ? v > lo : v >= lo) && v <= hi;
-  if (!ok) {
-    throw_invalid(field, std::string("must be in ") + (lo_open ? "(" : "[") + num(lo) + ", " +
-                             num(hi) + "]" + got(v));
-  }
-  return v;
-}
-
-int in_range(uint32_t v, uint32_t lo, uint32_t hi, const std::string& field) {
-  if (v < lo || v > hi) {
-    throw_invalid(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                             "] (got " + std::to_string(v) + ")");
-  }
-  return static_cast<int>(v);
-}
 
 Params params(const v1::MeshRequest& request) {
   Params out;
@@ -578,7 +509,12 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
                 double& estimated_nodes) {
   Problem problem;
 
-  if (!request.has_geometry()) throw_invalid("geometry", "required: the domain to mesh");
+  if (request.has_volume()) {
+    throw_invalid("volume", "a volume (3D) request; this entry point meshes plane domains");
+  }
+  if (!request.has_geometry()) {
+    throw_invalid("geometry", "required: the domain to mesh (or volume, for a 3D domain)");
+  }
   problem.geometry = ShapeConverter(limits, "geometry").convert(request.geometry());
   problem.size = size_field(request, limits);
   problem.h0 = positive(request.h0(), "h0");
@@ -620,8 +556,16 @@ Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limit
 
 JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits) {
   JobSpec spec;
-  spec.problem = convert(request, limits, spec.estimated_nodes);
+  if (request.has_volume()) {
+    spec.volume = to_problem3(request, limits, spec.estimated_nodes);
+  } else {
+    spec.problem = convert(request, limits, spec.estimated_nodes);
+  }
   spec.options = job_options(request.options(), spec.estimated_nodes, limits);
+  if (spec.volume && spec.options.snapshot_every > 0) {
+    throw_invalid("options.snapshot_every",
+                  "must be 0 for a volume: 3D jobs stream no snapshots yet");
+  }
   return spec;
 }
 

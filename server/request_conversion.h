@@ -26,7 +26,7 @@ struct ConversionLimits {
   double max_size_ratio = 1000;          // bound on (largest h) / (smallest h) of the size field
   int max_size_terms = 100;              // terms of the size field
   int64_t max_size_grid_values = 16'777'216;  // samples of all grid terms together
-  int max_fixed_points = 100'000;        // entries of fixed_points
+  int max_fixed_points = 100'000;             // entries of fixed_points
   // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well
   // inside a client's default 4 MiB message limit.
   int max_snapshot_nodes = 50'000;
@@ -45,7 +45,8 @@ struct ConversionLimits {
 //   limits   the caller's limits
 Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits = {});
 
-// to_problem, then the service's options (options.*) with their ranges. Snapshots of a request
+// to_problem (to_problem3, volume_conversion.h, for a request with a volume), then the
+// service's options (options.*) with their ranges. Snapshots of a request
 // estimated above the snapshot limit are RESOURCE_EXHAUSTED naming "options.snapshot_every".
 JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits = {});
 

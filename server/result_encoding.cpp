@@ -26,7 +26,67 @@ v1::MeshData to_mesh_data(const Mesh& mesh) {
   return out;
 }
 
+v1::MeshData to_mesh_data(const TetMesh& mesh) {
+  v1::MeshData out;
+  out.set_dimension(3);
+  out.mutable_points()->Reserve(static_cast<int>(3 * mesh.points.size()));
+  for (const Vec3& p : mesh.points) {
+    out.add_points(p.x);
+    out.add_points(p.y);
+    out.add_points(p.z);
+  }
+  out.mutable_tetrahedra()->Reserve(static_cast<int>(4 * mesh.tets.size()));
+  for (const auto& t : mesh.tets) {
+    for (int32_t v : t) out.add_tetrahedra(v);
+  }
+  for (const auto& f : mesh.boundary_faces) {
+    for (int32_t v : f) out.add_boundary_faces(v);
+  }
+  for (int32_t tag : mesh.boundary_tags) out.add_boundary_tags(tag);
+  for (const auto& name : mesh.boundary_names) out.add_boundary_names(name);
+  return out;
+}
+
 namespace {
+
+v1::RunStats to_proto(const RunStats3& s) {
+  v1::RunStats out;
+  out.set_iterations(s.iterations);
+  out.set_converged(s.converged);
+  out.set_levels(1);
+  out.set_retriangulations(s.retriangulations);
+  out.set_full_triangulations(s.retriangulations);
+  out.set_density_removed(s.removed);
+  out.set_fixed_nodes(s.fixed);
+  out.set_sliver_moves(s.optimizer_moves);
+  out.set_t_slivers(s.t_slivers);
+  out.set_t_mesh(s.t_total);
+  return out;
+}
+
+v1::Quality to_proto(const TetQualityStats& q) {
+  v1::Quality out;
+  out.set_q_min(q.q_min);
+  out.set_q_mean(q.q_mean);
+  for (int64_t count : q.histogram) out.add_histogram(count);
+  out.set_min_dihedral_deg(q.min_dihedral_deg);
+  out.set_max_dihedral_deg(q.max_dihedral_deg);
+  out.set_volume(q.volume);
+  return out;
+}
+
+// The payload cut into chunks, with its size and checksum in `done`.
+EncodedResult chunked(const std::string& payload, size_t chunk_bytes) {
+  EncodedResult out;
+  out.total_bytes = payload.size();
+  out.chunk_bytes = chunk_bytes;
+  for (size_t offset = 0; offset < payload.size() || out.chunks.empty(); offset += chunk_bytes) {
+    out.chunks.push_back(payload.substr(offset, std::min(chunk_bytes, payload.size() - offset)));
+  }
+  out.done.set_result_bytes(out.total_bytes);
+  out.done.set_result_sha256(sha256_hex(payload));
+  return out;
+}
 
 v1::RunStats to_proto(const RunStats& s) {
   v1::RunStats out;
@@ -59,19 +119,22 @@ v1::Quality to_proto(const QualityStats& q) {
 }  // namespace
 
 EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes) {
-  const std::string payload = to_mesh_data(result.mesh).SerializeAsString();
-  EncodedResult out;
-  out.total_bytes = payload.size();
-  out.chunk_bytes = chunk_bytes;
-  for (size_t offset = 0; offset < payload.size() || out.chunks.empty(); offset += chunk_bytes) {
-    out.chunks.push_back(payload.substr(offset, std::min(chunk_bytes, payload.size() - offset)));
-  }
+  EncodedResult out = chunked(to_mesh_data(result.mesh).SerializeAsString(), chunk_bytes);
   v1::Done& done = out.done;
   done.set_nodes(static_cast<int64_t>(result.mesh.points.size()));
   done.set_triangles(static_cast<int64_t>(result.mesh.triangles.size()));
   done.set_boundary_edges(static_cast<int64_t>(result.mesh.boundary_edges.size()));
-  done.set_result_bytes(out.total_bytes);
-  done.set_result_sha256(sha256_hex(payload));
+  *done.mutable_stats() = to_proto(result.stats);
+  *done.mutable_quality() = to_proto(result.quality);
+  return out;
+}
+
+EncodedResult encode_result(const MeshResult3& result, size_t chunk_bytes) {
+  EncodedResult out = chunked(to_mesh_data(result.mesh).SerializeAsString(), chunk_bytes);
+  v1::Done& done = out.done;
+  done.set_nodes(static_cast<int64_t>(result.mesh.points.size()));
+  done.set_tetrahedra(static_cast<int64_t>(result.mesh.tets.size()));
+  done.set_boundary_faces(static_cast<int64_t>(result.mesh.boundary_faces.size()));
   *done.mutable_stats() = to_proto(result.stats);
   *done.mutable_quality() = to_proto(result.quality);
   return out;

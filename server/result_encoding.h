@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/distmesh/distmesh.h"
+#include "core/distmesh3d/generate_mesh3d.h"
 #include "meshd/v1/mesh.pb.h"
 #include "meshd/v1/service.pb.h"
 
@@ -24,8 +25,10 @@ struct EncodedResult {
 };
 
 v1::MeshData to_mesh_data(const Mesh& mesh);
+v1::MeshData to_mesh_data(const TetMesh& mesh);  // dimension 3
 
 // Encodes `result`, cutting the payload into chunks of at most `chunk_bytes` (> 0).
 EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes = kResultChunkBytes);
+EncodedResult encode_result(const MeshResult3& result, size_t chunk_bytes = kResultChunkBytes);
 
 }  // namespace meshd

@@ -9,6 +9,7 @@
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
+#include "core/distmesh3d/generate_mesh3d.h"
 #include "server/job_observer.h"
 #include "server/request_conversion.h"
 #include "server/status_mapping.h"
@@ -92,6 +93,34 @@ bool Worker::rebuild_engine() {
   }
 }
 
+EncodedResult Worker::run_plane(const Job& job, Observer& observer, Job::Clock::time_point t) {
+  const MeshResult result = generate_mesh(compile_problem(job.spec().problem), engine_->engine(),
+                                          &observer, job.cancel_flag());
+  const double t_mesh = seconds_since(t);
+  EncodedResult encoded = encode_result(result);
+  spdlog::info(
+      "job {} succeeded on {}: {} nodes, {} triangles, {} iterations{}, q_min {:.3f}, mesh "
+      "{:.3f} s, encode {:.3f} s, {} bytes",
+      job.id(), name_, result.mesh.points.size(), result.mesh.triangles.size(),
+      result.stats.iterations, result.stats.converged ? "" : " (max_iterations, not converged)",
+      result.quality.q_min, t_mesh, seconds_since(t) - t_mesh, encoded.total_bytes);
+  return encoded;
+}
+
+EncodedResult Worker::run_volume(const Job& job, Observer& observer, Job::Clock::time_point t) {
+  const MeshResult3 result = generate_mesh3d(*job.spec().volume, engine_->engine().host_pool(),
+                                             &observer, job.cancel_flag());
+  const double t_mesh = seconds_since(t);
+  EncodedResult encoded = encode_result(result);
+  spdlog::info(
+      "job {} succeeded on {}: {} nodes, {} tetrahedra, {} iterations{}, q_min {:.3f}, min "
+      "dihedral {:.1f} deg, mesh {:.3f} s, encode {:.3f} s, {} bytes",
+      job.id(), name_, result.mesh.points.size(), result.mesh.tets.size(), result.stats.iterations,
+      result.stats.converged ? "" : " (max_iterations, not converged)", result.quality.q_min,
+      result.quality.min_dihedral_deg, t_mesh, seconds_since(t) - t_mesh, encoded.total_bytes);
+  return encoded;
+}
+
 void Worker::run(Job& job) {
   if (Job::Clock::now() > job.deadline()) {
     job.finish(grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
@@ -111,17 +140,7 @@ void Worker::run(Job& job) {
                job.spec().estimated_nodes);
   try {
     JobObserver observer(job);
-    const MeshResult result = generate_mesh(compile_problem(job.spec().problem), engine_->engine(),
-                                            &observer, job.cancel_flag());
-    const double t_mesh = seconds_since(t);
-    EncodedResult encoded = encode_result(result);
-    spdlog::info(
-        "job {} succeeded on {}: {} nodes, {} triangles, {} iterations{}, q_min {:.3f}, mesh "
-        "{:.3f} s, encode {:.3f} s, {} bytes",
-        job.id(), name_, result.mesh.points.size(), result.mesh.triangles.size(),
-        result.stats.iterations, result.stats.converged ? "" : " (max_iterations, not converged)",
-        result.quality.q_min, t_mesh, seconds_since(t) - t_mesh, encoded.total_bytes);
-    job.succeed(std::move(encoded));
+    job.succeed(job.spec().volume ? run_volume(job, observer, t) : run_plane(job, observer, t));
   } catch (const Error& e) {
     const grpc::Status status =
         e.code() == ErrorCode::kCancelled ? job.stop_status() : to_grpc_status(e);

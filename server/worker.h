@@ -12,8 +12,10 @@
 #include <string>
 #include <thread>
 
+#include "core/distmesh/observer.h"
 #include "server/job_queue.h"
 #include "server/metrics.h"
+#include "server/result_encoding.h"
 #include "server/worker_engine.h"
 
 namespace meshd {
@@ -47,6 +49,9 @@ class Worker {
  private:
   void loop();
   void run(Job& job);
+  // The job's mesh on this worker's engine, encoded; `t` is when it started.
+  EncodedResult run_plane(const Job& job, Observer& observer, Job::Clock::time_point t);
+  EncodedResult run_volume(const Job& job, Observer& observer, Job::Clock::time_point t);
   bool rebuild_engine();
 
   const std::string name_;

@@ -381,6 +381,35 @@ def test_feature(c):
     assert "--feature:" in r.stderr and "elements,h_min,h_max" in r.stderr, r.stderr
 
 
+def test_volume(c):
+    """A 3D request from a file and from --sphere: tetrahedra in every 3D format, read back."""
+    r = c.expect(OK, "generate", c.example("volumes/box_minus_sphere.textproto"), "-o", "v.msh",
+                 "-o", "v.msh22", "-o", "v.vtu", "--deadline", "120")
+    m = re.search(r"nodes (\d+)\s+tetrahedra (\d+)", r.stdout)
+    assert m, f"no 3D summary in:\n{r.stdout}"
+    nodes, tets = int(m.group(1)), int(m.group(2))
+    assert "dihedral angles" in r.stdout, r.stdout
+    try:
+        import meshio
+    except ImportError:
+        meshio = None
+    if meshio:
+        for name in ("v.msh", "v.msh22", "v.vtu"):
+            with contextlib.redirect_stdout(io.StringIO()):
+                mesh = meshio.read(c.path(name), file_format="gmsh" if name.endswith("22")
+                                   else None)
+            read = sum(len(b.data) for b in mesh.cells if b.type == "tetra")
+            assert (len(mesh.points), read) == (nodes, tets), f"{name}: {len(mesh.points)}, {read}"
+    r = c.expect(OK, "generate", "--sphere", "1", "--hole", "0.4", "--h0", "0.3", "-o", "s.vtu")
+    assert "tetrahedra" in r.stdout, r.stdout
+    # 3D runs on the CPU engine only, and an SVG has no picture of tetrahedra yet.
+    c.expect(FAILED_PRECONDITION, "generate", "--sphere", "1", "--h0", "0.3", "--backend", "gpu")
+    r = c.expect(BAD_RESULT, "generate", "--sphere", "1", "--h0", "0.3", "-o", "s.svg")
+    assert "format" in r.stderr, r.stderr
+    c.expect(BAD_REQUEST, "generate", "--sphere", "1", "--circle", "1", "--h0", "0.3")
+    print(f"  {nodes} nodes, {tets} tetrahedra; read back by meshio: {bool(meshio)}")
+
+
 def test_help(c):
     for argv, wanted in ((["--help"], "examples"), (["help", "generate"], "Examples:")):
         r = subprocess.run([c.meshctl_bin, *argv], capture_output=True, text=True, timeout=30)
@@ -409,7 +438,7 @@ TESTS = [test_health, test_generate_files, test_generate_json, test_frames, test
          test_gpu_on_cpu_server, test_too_large, test_submit_watch_status_list,
          test_queue_full_and_cancel, test_deadline, test_unreachable, test_command_line,
          test_output_file_error, test_import, test_request, test_sdf_grid, test_size_grid,
-         test_feature,
+         test_feature, test_volume,
          test_help, test_not_serving_while_draining]
 
 

@@ -1,0 +1,325 @@
+#include "server/volume_conversion.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "core/common/error.h"
+#include "core/distmesh3d/node_estimate3d.h"
+#include "core/geometry3d/bounds3.h"
+#include "core/geometry3d/compile3d.h"
+#include "core/geometry3d/sdf3_eval.cuh"
+#include "server/field_checks.h"
+
+namespace meshd {
+namespace {
+
+Vec3 to_vec3(const v1::Vec3& v, const std::string& field) {
+  return {finite(v.x(), field + ".x"), finite(v.y(), field + ".y"), finite(v.z(), field + ".z")};
+}
+
+// ---------------------------------------------------------------------------------------------
+// The Shape3 tree. One converter per tree: it counts the tree's nodes against the limit.
+
+class Shape3Converter {
+ public:
+  Shape3Converter(const ConversionLimits& limits, std::string root)
+      : limits_(limits), root_(std::move(root)) {}
+
+  Shape3 convert(const v1::Shape3& shape) { return convert(shape, root_, 1, ""); }
+
+ private:
+  Shape3 convert(const v1::Shape3& in, const std::string& path, int depth,
+                 const std::string& inherited_name) {
+    if (depth > limits_.max_tree_depth) {
+      throw_invalid(path, "the tree is deeper than the limit of " +
+                              std::to_string(limits_.max_tree_depth) +
+                              " levels (a lone primitive is 1 level)");
+    }
+    if (++nodes_ > limits_.max_tree_nodes) {
+      throw_invalid(root_, "the tree has more than the limit of " +
+                               std::to_string(limits_.max_tree_nodes) + " shape nodes");
+    }
+    if (!in.name().empty()) check_name(in.name(), path + ".name");
+
+    Shape3 out;
+    out.path = path;
+    out.name = in.name().empty() ? inherited_name : in.name();
+    const std::string& name = out.name;
+    // The primitives' other ranges (a torus's radii, a cone's two radii) are checked by the
+    // compiler, which names the same fields.
+    switch (in.kind_case()) {
+      case v1::Shape3::kSphere: {
+        const std::string p = path + ".sphere";
+        out.node = Sphere{to_vec3(in.sphere().center(), p + ".center"),
+                          positive(in.sphere().radius(), p + ".radius")};
+        break;
+      }
+      case v1::Shape3::kBox: {
+        const std::string p = path + ".box";
+        Cuboid c{to_vec3(in.box().min(), p + ".min"), to_vec3(in.box().max(), p + ".max")};
+        if (!(c.max.x > c.min.x))
+          throw_invalid(p + ".max.x", "must be > min.x = " + num(c.min.x) + got(c.max.x));
+        if (!(c.max.y > c.min.y))
+          throw_invalid(p + ".max.y", "must be > min.y = " + num(c.min.y) + got(c.max.y));
+        if (!(c.max.z > c.min.z))
+          throw_invalid(p + ".max.z", "must be > min.z = " + num(c.min.z) + got(c.max.z));
+        out.node = c;
+        break;
+      }
+      case v1::Shape3::kCylinder: {
+        const std::string p = path + ".cylinder";
+        const auto& c = in.cylinder();
+        out.node =
+            Cylinder{to_vec3(c.base_center(), p + ".base_center"),
+                     positive(c.radius(), p + ".radius"), positive(c.height(), p + ".height")};
+        break;
+      }
+      case v1::Shape3::kCone: {
+        const std::string p = path + ".cone";
+        const auto& c = in.cone();
+        Frustum f;
+        f.base_center = to_vec3(c.base_center(), p + ".base_center");
+        f.bottom_radius = finite(c.bottom_radius(), p + ".bottom_radius");
+        f.top_radius = finite(c.top_radius(), p + ".top_radius");
+        f.height = positive(c.height(), p + ".height");
+        out.node = f;
+        break;
+      }
+      case v1::Shape3::kTorus: {
+        const std::string p = path + ".torus";
+        const auto& t = in.torus();
+        out.node =
+            Torus{to_vec3(t.center(), p + ".center"), finite(t.major_radius(), p + ".major_radius"),
+                  positive(t.minor_radius(), p + ".minor_radius")};
+        break;
+      }
+      case v1::Shape3::kHalfSpace: {
+        const std::string p = path + ".half_space";
+        const Vec3 normal = to_vec3(in.half_space().normal(), p + ".normal");
+        if (normal == Vec3{}) {
+          throw_invalid(p + ".normal",
+                        "must be non-zero (got (0, 0, 0)); it need not be unit length");
+        }
+        out.node = HalfSpace{normal, finite(in.half_space().offset(), p + ".offset")};
+        break;
+      }
+      case v1::Shape3::kUnion:
+        out.node = csg(CsgOp::kUnion, in.union_().shapes(), path + ".union", depth, name);
+        break;
+      case v1::Shape3::kIntersection:
+        out.node = csg(CsgOp::kIntersection, in.intersection().shapes(), path + ".intersection",
+                       depth, name);
+        break;
+      case v1::Shape3::kDifference: {
+        const std::string p = path + ".difference";
+        const auto& d = in.difference();
+        if (!d.has_base()) throw_invalid(p + ".base", "required: the solid to subtract from");
+        Csg3 c{CsgOp::kDifference, {}};
+        c.operands.reserve(1 + d.subtract_size());
+        c.operands.push_back(convert(d.base(), p + ".base", depth + 1, name));
+        for (int i = 0; i < d.subtract_size(); ++i) {
+          c.operands.push_back(convert(d.subtract(i), at(p, "subtract", i), depth + 1, name));
+        }
+        out.node = std::move(c);
+        break;
+      }
+      case v1::Shape3::kTranslate: {
+        const std::string p = path + ".translate";
+        const auto& t = in.translate();
+        Similarity3 s;
+        s.offset = to_vec3(t.offset(), p + ".offset");
+        if (!t.has_shape()) throw_invalid(p + ".shape", "required: the solid to translate");
+        out.node = Transformed3{s, {convert(t.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape3::kRotate: {
+        // About c: p -> R(p - c) + c = R p + (c - R c).
+        const std::string p = path + ".rotate";
+        const auto& r = in.rotate();
+        const double degrees = finite(r.angle_deg(), p + ".angle_deg");
+        Similarity3 s;
+        s.axis = to_vec3(r.axis(), p + ".axis");
+        if (degrees != 0.0 && s.axis == Vec3{}) {
+          throw_invalid(p + ".axis", "must be non-zero when angle_deg is not 0 (got (0, 0, 0))");
+        }
+        s.angle = degrees * (std::numbers::pi / 180.0);
+        const Vec3 c = to_vec3(r.center(), p + ".center");
+        s.offset = c - apply(s, c);
+        if (!r.has_shape()) throw_invalid(p + ".shape", "required: the solid to rotate");
+        out.node = Transformed3{s, {convert(r.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape3::kScale: {
+        // About c: p -> f (p - c) + c = f p + (1 - f) c.
+        const std::string p = path + ".scale";
+        const auto& sc = in.scale();
+        Similarity3 s;
+        s.scale = positive(sc.factor(), p + ".factor");
+        const Vec3 c = to_vec3(sc.center(), p + ".center");
+        s.offset = (1.0 - s.scale) * c;
+        if (!sc.has_shape()) throw_invalid(p + ".shape", "required: the solid to scale");
+        out.node = Transformed3{s, {convert(sc.shape(), p + ".shape", depth + 1, name)}};
+        break;
+      }
+      case v1::Shape3::KIND_NOT_SET:
+        throw_invalid(path,
+                      "no shape kind set; set exactly one of sphere, box, cylinder, cone, torus, "
+                      "half_space, union, intersection, difference, translate, rotate, scale");
+    }
+    return out;
+  }
+
+  Csg3 csg(CsgOp op, const google::protobuf::RepeatedPtrField<v1::Shape3>& shapes,
+           const std::string& path, int depth, const std::string& name) {
+    if (shapes.empty()) throw_invalid(path + ".shapes", "needs at least 1 shape (got 0)");
+    Csg3 c{op, {}};
+    c.operands.reserve(shapes.size());
+    for (int i = 0; i < shapes.size(); ++i) {
+      c.operands.push_back(convert(shapes[i], at(path, "shapes", i), depth + 1, name));
+    }
+    return c;
+  }
+
+  const ConversionLimits& limits_;
+  const std::string root_;
+  int nodes_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The size field.
+
+SizeField3 size_field3(const v1::Volume& volume, const ConversionLimits& limits) {
+  SizeField3 out;
+  if (!volume.has_size()) return out;
+  const auto& terms = volume.size().terms();
+  if (terms.size() > limits.max_size_terms) {
+    throw_invalid("volume.size.terms", "at most " + std::to_string(limits.max_size_terms) +
+                                           " terms allowed (got " + std::to_string(terms.size()) +
+                                           ")");
+  }
+  for (int i = 0; i < terms.size(); ++i) {
+    const std::string p = at("volume.size", "terms", i);
+    switch (terms[i].kind_case()) {
+      case v1::SizeTerm3::kUniform:
+        out.terms.emplace_back(
+            UniformSize{positive(terms[i].uniform().value(), p + ".uniform.value")});
+        break;
+      case v1::SizeTerm3::kDistance: {
+        const std::string q = p + ".distance";
+        const auto& d = terms[i].distance();
+        DistanceSize3 term;
+        term.h_min = positive(d.h_min(), q + ".h_min");
+        term.slope = d.slope();
+        if (!(std::isfinite(term.slope) && term.slope >= 0)) {
+          throw_invalid(q + ".slope", "must be finite and >= 0" + got(term.slope));
+        }
+        term.h_max = at_least_h_min(d.h_max(), term.h_min, q + ".h_max");
+        if (!d.has_shape()) throw_invalid(q + ".shape", "required: the solid to measure from");
+        term.shape = Shape3Converter(limits, q + ".shape").convert(d.shape());
+        out.terms.emplace_back(std::in_place_type<DistanceSize3>, std::move(term));
+        break;
+      }
+      case v1::SizeTerm3::KIND_NOT_SET:
+        throw_invalid(p, "no size term kind set; set exactly one of uniform, distance");
+    }
+  }
+  const SizeRange range = size_range3(out);
+  if (range.high / range.low > limits.max_size_ratio) {
+    throw_invalid("volume.size.terms", "the largest size over the smallest may be at most " +
+                                           num(limits.max_size_ratio) + " (got " + num(range.low) +
+                                           " to " + num(range.high) + ")");
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parameters: each optional, with the 3D loop's defaults (params3d.h).
+
+Params3 params3(const v1::MeshRequest& request) {
+  Params3 out;
+  out.seed = request.seed();
+  if (!request.has_params()) return out;
+  const auto& in = request.params();
+  if (in.has_dptol()) out.dptol = in_range(in.dptol(), 0, true, 0.1, "params.dptol");
+  if (in.has_ttol()) out.ttol = in_range(in.ttol(), 0, true, 1, "params.ttol");
+  if (in.has_fscale()) out.fscale = in_range(in.fscale(), 1, false, 2, "params.fscale");
+  if (in.has_deltat()) out.deltat = in_range(in.deltat(), 0, true, 0.5, "params.deltat");
+  if (in.has_geps()) out.geps = in_range(in.geps(), 0, true, 0.1, "params.geps");
+  if (in.has_density_control_interval()) {
+    out.density_control_interval =
+        in_range(in.density_control_interval(), 0, 1000, "params.density_control_interval");
+  }
+  if (in.has_max_iterations()) {
+    out.max_iterations = in_range(in.max_iterations(), 1, 1'000'000, "params.max_iterations");
+  }
+  if (in.has_cleanup()) out.optimize_slivers = in.cleanup();
+  if (in.has_momentum()) out.momentum = in_range(in.momentum(), 0, false, 0.9, "params.momentum");
+  if (in.has_multilevel()) {
+    throw_invalid("params.multilevel", "must stay unset for a volume: 3D has no multilevel start");
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The node count, from the domain's volume weighted by the size field (node_estimate3d.h).
+
+double check_node_count3(const Problem3& problem, const ConversionLimits& limits) {
+  const Program3 program = compile_geometry3(problem.geometry);
+  const Box3 bounds = domain_bounds3(program);
+  const Program3View view = program.view();
+  const double low = size_range3(problem.size).low;
+  const auto size = compile_size_field3(problem.size);
+  const double volume = weighted_volume3d(
+      [view](Vec3 p) { return eval_sdf3(view, p); },
+      size ? [&size, low](Vec3 p) { return size(p) / low; } : std::function<double(Vec3)>{},
+      bounds);
+  if (!(volume > 0)) {
+    throw_invalid("volume.geometry",
+                  "no point of a 64^3 grid over the domain's box lies inside: "
+                  "the domain is empty or far thinner than its box");
+  }
+  const double h0 = problem.h0;
+  const double nodes = node_count3d(volume, h0 * low);
+  if (!(nodes >= 4)) {
+    throw_invalid("h0", "h0 = " + num(h0) + " gives about " + approx(nodes) +
+                            " nodes; at least 4 are needed: h0 must be at most about " +
+                            approx(h0_for_node_count3d(volume, 4) / low));
+  }
+  if (nodes > static_cast<double>(limits.max_nodes)) {
+    throw Error(
+        ErrorCode::kResourceExhausted, "h0",
+        "h0 = " + num(h0) + " gives about " + approx(nodes) + " nodes, more than the limit of " +
+            std::to_string(limits.max_nodes) + ": h0 must be at least about " +
+            approx(h0_for_node_count3d(volume, static_cast<double>(limits.max_nodes)) / low));
+  }
+  return nodes;
+}
+
+}  // namespace
+
+Problem3 to_problem3(const v1::MeshRequest& request, const ConversionLimits& limits,
+                     double& estimated_nodes) {
+  // The plane fields mean nothing to a volume: refuse them rather than ignore them.
+  if (request.has_geometry())
+    throw_invalid("geometry", "must be unset when volume is set (a request is 2D or 3D)");
+  if (request.has_size()) throw_invalid("size", "must be unset for a volume: use volume.size");
+  if (request.has_bbox()) throw_invalid("bbox", "must be unset for a volume");
+  if (request.fixed_points_size() > 0) throw_invalid("fixed_points", "must be empty for a volume");
+  if (request.has_auto_corners())
+    throw_invalid("auto_corners", "must be unset for a volume: use volume.auto_features");
+
+  const v1::Volume& volume = request.volume();
+  Problem3 problem;
+  if (!volume.has_geometry()) throw_invalid("volume.geometry", "required: the solid to mesh");
+  problem.geometry = Shape3Converter(limits, "volume.geometry").convert(volume.geometry());
+  problem.size = size_field3(volume, limits);
+  problem.h0 = positive(request.h0(), "h0");
+  problem.auto_features = volume.has_auto_features() ? volume.auto_features() : true;
+  problem.params = params3(request);
+  estimated_nodes = check_node_count3(problem, limits);
+  return problem;
+}
+
+}  // namespace meshd

@@ -1,0 +1,132 @@
+// Volume (3D) requests through the conversion layer: what a good one becomes, and every class of
+// bad field named by its path with the allowed range.
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <variant>
+
+#include "core/common/error.h"
+#include "server/request_conversion.h"
+
+namespace meshd::testing {
+namespace {
+
+v1::MeshRequest parse(const std::string& text) {
+  v1::MeshRequest request;
+  EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &request)) << text;
+  return request;
+}
+
+// to_job_spec fails with `code` on `field`, its message containing `message`.
+void expect_error(const std::string& text, ErrorCode code, const std::string& field,
+                  const std::string& message, const ConversionLimits& limits = {}) {
+  try {
+    to_job_spec(parse(text), limits);
+    ADD_FAILURE() << "no error; expected " << field << ": " << message;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(e.detail().find(message), std::string::npos)
+        << "message: " << e.detail() << "\nexpected to contain: " << message;
+  }
+}
+
+void expect_invalid(const std::string& text, const std::string& field, const std::string& message) {
+  expect_error(text, ErrorCode::kInvalidArgument, field, message);
+}
+
+constexpr const char* kBall = "volume { geometry { sphere { radius: 1 } } } h0: 0.2 ";
+
+TEST(VolumeConversion, ABallBecomesAProblem3WithItsDefaultsAndEstimate) {
+  const JobSpec spec = to_job_spec(parse(std::string(kBall) + "seed: 7"));
+  ASSERT_TRUE(spec.volume.has_value());
+  const Problem3& p = *spec.volume;
+  ASSERT_TRUE(std::holds_alternative<Sphere>(p.geometry.node));
+  EXPECT_EQ(std::get<Sphere>(p.geometry.node).radius, 1.0);
+  EXPECT_EQ(p.geometry.path, "volume.geometry");
+  EXPECT_EQ(p.h0, 0.2);
+  EXPECT_TRUE(p.auto_features);
+  EXPECT_EQ(p.params.seed, 7u);
+  EXPECT_EQ(p.params.fscale, Params3{}.fscale);
+  EXPECT_TRUE(p.params.optimize_slivers);
+  // sqrt(2) (4/3 pi) / 0.2^3 = 740 nodes, up to the 64^3 grid's error.
+  EXPECT_NEAR(spec.estimated_nodes, 740.0, 30.0);
+}
+
+TEST(VolumeConversion, ParametersSizeTermsAndNamesConvert) {
+  const JobSpec spec = to_job_spec(parse(R"(
+    volume {
+      geometry { name: "part" difference {
+        base { box { min { x: -1 y: -1 z: -1 } max { x: 1 y: 1 z: 1 } } }
+        subtract { name: "hole" rotate { axis { x: 1 } angle_deg: 90 shape { cylinder {
+          base_center { z: -2 } radius: 0.3 height: 4 } } } } } }
+      size { terms { distance { shape { sphere { radius: 0.3 } } h_min: 0.5 slope: 2 h_max: 2 } }
+             terms { uniform { value: 1.5 } } }
+      auto_features: false
+    }
+    h0: 0.1
+    params { dptol: 0.002 cleanup: false max_iterations: 50 })"));
+  const Problem3& p = *spec.volume;
+  EXPECT_FALSE(p.auto_features);
+  EXPECT_EQ(p.params.dptol, 0.002);
+  EXPECT_FALSE(p.params.optimize_slivers);
+  EXPECT_EQ(p.params.max_iterations, 50);
+  ASSERT_EQ(p.size.terms.size(), 2u);
+  EXPECT_EQ(size_range3(p.size).low, 0.5);
+  const auto& csg = std::get<Csg3>(p.geometry.node);
+  EXPECT_EQ(csg.operands[0].name, "part");  // inherited
+  EXPECT_EQ(csg.operands[1].name, "hole");
+  EXPECT_EQ(csg.operands[1].path, "volume.geometry.difference.subtract[0]");
+}
+
+TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
+  expect_invalid("volume { geometry { sphere { radius: -1 } } } h0: 0.2",
+                 "volume.geometry.sphere.radius", "must be finite and > 0 (got -1)");
+  expect_invalid("volume { geometry { box { min { z: 1 } max { x: 1 y: 1 z: 1 } } } } h0: 0.2",
+                 "volume.geometry.box.max.z", "must be > min.z = 1");
+  expect_invalid(
+      "volume { geometry { rotate { angle_deg: 30 shape { sphere { radius: 1 } } } } } h0: 0.2",
+      "volume.geometry.rotate.axis", "must be non-zero");
+  expect_invalid("volume { geometry { union { } } } h0: 0.2", "volume.geometry.union.shapes",
+                 "needs at least 1 shape");
+  expect_invalid("volume { geometry { } } h0: 0.2", "volume.geometry", "no shape kind set");
+  expect_invalid("volume { geometry { sphere { radius: 1 } name: \"a b\" } } h0: 0.2",
+                 "volume.geometry.name", "is not allowed");
+  expect_invalid("volume { geometry { torus { major_radius: 0.5 minor_radius: 1 } } } h0: 0.2",
+                 "volume.geometry.torus.major_radius", "");
+  expect_invalid("volume { geometry { half_space { normal { z: 1 } } } } h0: 0.2",
+                 "volume.geometry", "the domain is unbounded");
+  expect_invalid(std::string(kBall) + "geometry { circle { radius: 1 } }", "geometry",
+                 "must be unset when volume is set");
+  expect_invalid(std::string(kBall) + "fixed_points { x: 0 }", "fixed_points", "must be empty");
+  expect_invalid(std::string(kBall) + "params { multilevel: true }", "params.multilevel",
+                 "must stay unset");
+  expect_invalid(std::string(kBall) + "params { geps: 0.5 }", "params.geps", "must be in (0, 0.1]");
+  expect_invalid(std::string(kBall) + "options { snapshot_every: 5 }", "options.snapshot_every",
+                 "must be 0 for a volume");
+  expect_invalid(
+      "volume { geometry { sphere { radius: 1 } } size { terms { distance { "
+      "shape { sphere { radius: 1 } } h_min: 2 h_max: 1 } } } } h0: 0.2",
+      "volume.size.terms[0].distance.h_max", "must be finite and >= h_min = 2");
+  expect_invalid(
+      "volume { geometry { sphere { radius: 1 } } size { terms { distance { "
+      "h_min: 1 h_max: 2 } } } } h0: 0.2",
+      "volume.size.terms[0].distance.shape", "required");
+  expect_invalid("volume { geometry { sphere { radius: 1 } } } h0: 5", "h0",
+                 "at least 4 are needed");
+  expect_error("volume { geometry { sphere { radius: 1 } } } h0: 0.001",
+               ErrorCode::kResourceExhausted, "h0", "h0 must be at least about");
+}
+
+TEST(VolumeConversion, ThePlaneEntryPointRefusesAVolume) {
+  try {
+    to_problem(parse(kBall));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "volume");
+  }
+}
+
+}  // namespace
+}  // namespace meshd::testing

@@ -1,0 +1,98 @@
+// Volume (3D) jobs through meshd.v1.MeshService on an in-process server: the stream, the
+// result's tetrahedra read back and checked, the backend rules, cancellation.
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "client/result_assembly.h"
+#include "core/mesh3d/tet_validity.h"
+#include "tests/server/test_server.h"
+
+namespace meshd::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+v1::MeshRequest parse(const std::string& text) {
+  v1::MeshRequest request;
+  EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &request)) << text;
+  return request;
+}
+
+// A box minus a ball, ~1,500 nodes: corners, edges and a curved face.
+constexpr const char* kBoxMinusBall = R"(
+  volume { geometry { difference {
+    base { name: "box" box { min { x: -1 y: -1 z: -1 } max { x: 1 y: 1 z: 1 } } }
+    subtract { name: "ball" sphere { radius: 0.5 } } } } }
+  h0: 0.2)";
+
+TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
+  TestServer server;
+  auto stub = server.stub();
+  const StreamResult r = generate(*stub, parse(kBoxMinusBall));
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  ASSERT_TRUE(r.has_done);
+  EXPECT_TRUE(r.checksum_ok);
+  const auto kinds = r.kinds();
+  EXPECT_EQ(kinds.front(), "queued");
+  EXPECT_EQ(kinds[1], "started");
+  EXPECT_EQ(kinds.back(), "done");
+  EXPECT_EQ(r.done.backend(), v1::JobOptions::BACKEND_CPU);
+
+  EXPECT_EQ(r.mesh.dimension(), 3u);
+  const TetMesh mesh = cli::to_tet_mesh(r.mesh);
+  EXPECT_EQ(static_cast<int64_t>(mesh.points.size()), r.done.nodes());
+  EXPECT_EQ(static_cast<int64_t>(mesh.tets.size()), r.done.tetrahedra());
+  EXPECT_EQ(static_cast<int64_t>(mesh.boundary_faces.size()), r.done.boundary_faces());
+  EXPECT_EQ(r.done.triangles(), 0);
+  const TetValidityReport report = check_tet_validity(mesh);
+  EXPECT_TRUE(report.valid()) << (report.problems.empty() ? "" : report.problems[0]);
+  EXPECT_EQ(mesh.boundary_names, (std::vector<std::string>{"box", "ball"}));
+  // 8 - (4/3) pi 0.5^3 = 7.476; the ball's facets cut a little off it.
+  EXPECT_NEAR(r.done.quality().volume(), 7.476, 0.05);
+  EXPECT_GT(r.done.quality().q_min(), 0.2);
+  EXPECT_GT(r.done.quality().min_dihedral_deg(), 10.0);
+  EXPECT_GT(r.done.stats().fixed_nodes(), 8);
+}
+
+TEST(VolumeService, BadVolumesAndTheGpuBackendAreRefused) {
+  TestServer server;
+  auto stub = server.stub();
+  const StreamResult bad =
+      generate(*stub, parse("volume { geometry { sphere { radius: 0 } } } h0: 0.1"));
+  EXPECT_EQ(bad.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(bad.status.error_message().find("volume.geometry.sphere.radius"), std::string::npos)
+      << bad.status.error_message();
+  v1::MeshRequest gpu = parse(kBoxMinusBall);
+  gpu.mutable_options()->set_backend(v1::JobOptions::BACKEND_GPU);
+  EXPECT_EQ(generate(*stub, gpu).status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+}
+
+TEST(VolumeService, CancelStopsARunningVolumeJob) {
+  TestServer server;
+  auto stub = server.stub();
+  v1::MeshRequest endless = parse(
+      "volume { geometry { sphere { radius: 1 } } } h0: 0.2 "
+      "params { dptol: 1e-12 max_iterations: 1000000 density_control_interval: 0 }");
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + 60s);
+  auto reader = stub->Generate(&context, endless);
+  v1::MeshEvent event;
+  // Its first progress: the job is in its iterations.
+  while (reader->Read(&event) && !event.has_progress()) {
+  }
+  ASSERT_TRUE(event.has_progress());
+  v1::JobRef ref;
+  ref.set_job_id(event.job_id());
+  v1::JobInfo info;
+  auto cancel_context = context_with_deadline();
+  ASSERT_TRUE(stub->Cancel(cancel_context.get(), ref, &info).ok());
+  while (reader->Read(&event)) {
+  }
+  EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_TRUE(eventually([&] { return server.server().jobs().live_jobs() == 0; }));
+}
+
+}  // namespace
+}  // namespace meshd::testing
