@@ -101,8 +101,8 @@ int main(int argc, char** argv) {
       if (opt.nodes > 0.0) {
         const meshd::GeometryDomain3 probe(c.shape, h0, c.size);
         const meshd::Domain3& d = probe.domain();
-        h0 = meshd::h0_for_node_count3d(meshd::weighted_volume3d(d.distance, d.size, d.bounds),
-                                        opt.nodes);
+        h0 = meshd::h0_for_node_count3d(
+            meshd::survey_volume3d(d.distance, d.size, d.bounds).weighted_volume, opt.nodes);
       }
       const meshd::GeometryDomain3 geometry(c.shape, h0, c.size);
       meshd::Relaxed3 best;

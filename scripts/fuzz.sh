@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes the request path (tests/fuzz/request_fuzzer.cpp) for SECONDS (default 60): installs
 # clang when missing, builds the fuzzer with libFuzzer, ASan and UBSan into build-fuzz/, runs it
-# from the seed corpus (examples/*.textproto as text and as binary, plus the checked-in
-# regression inputs of tests/fuzz/corpus/) and prints executions, coverage and findings. Exits
-# non-zero on a finding, whose input lands in build-fuzz/fuzz/artifacts/.
+# from the seed corpus (examples/*.textproto and examples/volumes/*.textproto as text and as
+# binary, plus the checked-in regression inputs of tests/fuzz/corpus/) and prints executions,
+# coverage and findings. Exits non-zero on a finding, whose input lands in
+# build-fuzz/fuzz/artifacts/.
 #
 #   scripts/fuzz.sh [SECONDS]
 #
@@ -30,7 +31,7 @@ cmake --build build-fuzz --target request_fuzzer -j "$(nproc)"
 work=build-fuzz/fuzz
 rm -rf "$work/seeds" "$work/artifacts"
 mkdir -p "$work/seeds" "$work/corpus" "$work/artifacts"
-for f in examples/*.textproto; do
+for f in examples/*.textproto examples/volumes/*.textproto; do
   name=$(basename "$f" .textproto)
   { printf '0'; cat "$f"; } >"$work/seeds/$name.text"
   { printf '1'; protoc --encode=meshd.v1.MeshRequest -I proto meshd/v1/request.proto <"$f"; } \

@@ -19,9 +19,11 @@ namespace meshd {
 // What one request may ask for. The defaults are the ones quoted in the proto comments; a
 // server may lower or raise them (a deployment with small GPUs lowers max_nodes).
 struct ConversionLimits {
-  int64_t max_nodes = 5'000'000;         // estimated node count (RESOURCE_EXHAUSTED above)
-  int max_tree_depth = 32;               // levels of one Shape tree; a lone primitive is 1
-  int max_tree_nodes = 1'000'000;        // Shape nodes in one tree (geometry or a size term)
+  int64_t max_nodes = 5'000'000;   // estimated node count (RESOURCE_EXHAUSTED above)
+  int max_tree_depth = 32;         // levels of one Shape tree; a lone primitive is 1
+  int max_tree_nodes = 1'000'000;  // Shape nodes in one tree (geometry or a size term)
+  // Shape3 nodes in one 3D tree: every point evaluates all of them (no spatial index in 3D yet).
+  int max_tree3_nodes = 1'000;
   int max_polygon_vertices = 5'000'000;  // vertices of one polygon (indexed: bvh.h)
   double max_size_ratio = 1000;          // bound on (largest h) / (smallest h) of the size field
   int max_size_terms = 100;              // terms of the size field

@@ -1,5 +1,6 @@
 #include "server/volume_conversion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -37,9 +38,9 @@ class Shape3Converter {
                               std::to_string(limits_.max_tree_depth) +
                               " levels (a lone primitive is 1 level)");
     }
-    if (++nodes_ > limits_.max_tree_nodes) {
+    if (++nodes_ > limits_.max_tree3_nodes) {
       throw_invalid(root_, "the tree has more than the limit of " +
-                               std::to_string(limits_.max_tree_nodes) + " shape nodes");
+                               std::to_string(limits_.max_tree3_nodes) + " shape nodes");
     }
     if (!in.name().empty()) check_name(in.name(), path + ".name");
 
@@ -271,13 +272,14 @@ double check_node_count3(const Problem3& problem, const ConversionLimits& limits
   const Program3View view = program.view();
   const double low = size_range3(problem.size).low;
   const auto size = compile_size_field3(problem.size);
-  const double volume = weighted_volume3d(
+  const VolumeSurvey3 survey = survey_volume3d(
       [view](Vec3 p) { return eval_sdf3(view, p); },
       size ? [&size, low](Vec3 p) { return size(p) / low; } : std::function<double(Vec3)>{},
       bounds);
+  const double volume = survey.weighted_volume;
   if (!(volume > 0)) {
     throw_invalid("volume.geometry",
-                  "no point of a 64^3 grid over the domain's box lies inside: "
+                  "no point of a 32^3 grid over the domain's box lies inside: "
                   "the domain is empty or far thinner than its box");
   }
   const double h0 = problem.h0;
@@ -293,6 +295,17 @@ double check_node_count3(const Problem3& problem, const ConversionLimits& limits
         "h0 = " + num(h0) + " gives about " + approx(nodes) + " nodes, more than the limit of " +
             std::to_string(limits.max_nodes) + ": h0 must be at least about " +
             approx(h0_for_node_count3d(volume, static_cast<double>(limits.max_nodes)) / low));
+  }
+  // The start spaces its nodes about h0 apart where h is finest: a domain much thinner than
+  // that gets no tetrahedron (2D's check_thickness in 3D, from the grid's deepest point).
+  const double thickness =
+      std::min({2.0 * (survey.depth + survey.half_diagonal), bounds.max.x - bounds.min.x,
+                bounds.max.y - bounds.min.y, bounds.max.z - bounds.min.z});
+  if (thickness < 0.5 * h0 * low) {
+    throw_invalid("h0", "h0 = " + num(h0) + ": the domain is at most about " + approx(thickness) +
+                            " thick, and no tetrahedron of that size fits; h0 must be at most "
+                            "about " +
+                            approx(2.0 * thickness / low));
   }
   return nodes;
 }

@@ -13,26 +13,31 @@ constexpr double kNodesPerVolume = 1.4142135623730951;
 
 }  // namespace
 
-double weighted_volume3d(const std::function<double(Vec3)>& distance,
-                         const std::function<double(Vec3)>& size, const Box3& b) {
-  constexpr int kCells = 64;
+VolumeSurvey3 survey_volume3d(const std::function<double(Vec3)>& distance,
+                              const std::function<double(Vec3)>& size, const Box3& b) {
+  constexpr int kCells = 32;
   const Vec3 step{(b.max.x - b.min.x) / kCells, (b.max.y - b.min.y) / kCells,
                   (b.max.z - b.min.z) / kCells};
   std::vector<double> sizes;
   double h_min = INFINITY;
+  VolumeSurvey3 out;
+  out.half_diagonal = 0.5 * std::sqrt(dot(step, step));
   for (int k = 0; k < kCells; ++k)
     for (int j = 0; j < kCells; ++j)
       for (int i = 0; i < kCells; ++i) {
         const Vec3 p{b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
                      b.min.z + (k + 0.5) * step.z};
-        if (distance(p) >= 0.0) continue;
+        const double d = distance(p);
+        if (!(d < 0.0)) continue;
+        out.depth = std::max(out.depth, -d);
         const double h = size ? size(p) : 1.0;
         sizes.push_back(h);
         h_min = std::min(h_min, h);
       }
   double weighted = 0.0;
   for (double h : sizes) weighted += std::pow(h_min / h, 3.0);
-  return weighted * step.x * step.y * step.z;
+  out.weighted_volume = weighted * step.x * step.y * step.z;
+  return out;
 }
 
 double node_count3d(double weighted_volume, double h0) {

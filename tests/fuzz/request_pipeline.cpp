@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "client/request_file.h"
 #include "core/common/error.h"
@@ -11,7 +12,9 @@
 #include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/cpu_engine.h"
 #include "core/distmesh/distmesh.h"
+#include "core/distmesh3d/generate_mesh3d.h"
 #include "core/mesh/validity.h"
+#include "core/mesh3d/tet_validity.h"
 
 namespace meshd::fuzz {
 namespace {
@@ -62,6 +65,39 @@ void check_result(const MeshResult& result, const Params& params, double estimat
   }
 }
 
+// A volume: the same promises in 3D (generate_mesh3d.h, tet_mesh.h), at about kMeshNodes.
+void run_volume_input(v1::MeshRequest& request, JobSpec spec) {
+  if (spec.estimated_nodes > kMeshNodes) {
+    request.set_h0(request.h0() * std::cbrt(spec.estimated_nodes / kMeshNodes));
+    spec = to_job_spec(request, fuzz_limits());
+  }
+  const double estimated_nodes = std::min(spec.estimated_nodes, kMeshNodes);
+  Problem3& problem = *spec.volume;
+  if (problem.params.max_iterations > kMaxIterations)
+    problem.params.max_iterations = kMaxIterations;
+  const std::atomic<bool> cancel{false};
+  const MeshResult3 result = generate_mesh3d(problem, nullptr, nullptr, &cancel);
+  const auto fail = [&](const std::string& what) {
+    throw InvariantBroken("invariant broken: " + what + " (nodes " +
+                          std::to_string(result.mesh.points.size()) + ", tetrahedra " +
+                          std::to_string(result.mesh.tets.size()) + ", iterations " +
+                          std::to_string(result.stats.iterations) + ")");
+  };
+  const TetValidityReport report = check_tet_validity(result.mesh);
+  if (!report.valid()) {
+    std::string problems;
+    for (const std::string& p : report.problems) problems += "; " + p;
+    fail("the mesh fails check_tet_validity" + problems);
+  }
+  if (estimated_nodes >= kNonEmptyAbove && result.mesh.tets.empty())
+    fail("no tetrahedra from a request estimated at " + std::to_string(estimated_nodes) + " nodes");
+  const RunStats3& s = result.stats;
+  if (s.iterations < 1) fail("no iteration ran");
+  if (s.iterations > problem.params.max_iterations) fail("iterations above max_iterations");
+  if (!s.converged && s.iterations != problem.params.max_iterations)
+    fail("not converged, yet stopped before max_iterations");
+}
+
 }  // namespace
 
 ConversionLimits fuzz_limits() {
@@ -69,6 +105,7 @@ ConversionLimits fuzz_limits() {
   limits.max_nodes = 3'000;
   limits.max_tree_depth = 12;
   limits.max_tree_nodes = 64;
+  limits.max_tree3_nodes = 64;
   limits.max_polygon_vertices = 64;
   limits.max_size_terms = 8;
   limits.max_fixed_points = 64;
@@ -88,6 +125,10 @@ void run_request_input(const uint8_t* data, size_t size) {
     }
 
     JobSpec spec = to_job_spec(request, fuzz_limits());
+    if (spec.volume) {
+      run_volume_input(request, std::move(spec));
+      return;
+    }
     // Mesh small: time per input decides how much of the space gets explored. The coarser
     // request is checked again, as the server would check it (a domain thick enough for the
     // asked h0 may be too thin for the coarser one).

@@ -32,7 +32,9 @@ class InvariantBroken : public std::logic_error {
 // outcome of a bad request), or is not a parsable binary message. Throws InvariantBroken when the
 // result breaks a promise, converged or not: the mesh fails check_validity, or has no triangle
 // though estimated at 30 nodes or more, or the loop ran past max_iterations, or stopped short of
-// it without converging. Anything else (another exception, a crash, a sanitizer report) is a
+// it without converging. A volume (3D) request is meshed at about the same node count with
+// generate_mesh3d and held to the same promises, check_tet_validity in place of check_validity.
+// Anything else (another exception, a crash, a sanitizer report) is a
 // finding.
 void run_request_input(const uint8_t* data, size_t size);
 

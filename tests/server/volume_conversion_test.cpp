@@ -115,6 +115,9 @@ TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
       "volume.size.terms[0].distance.shape", "required");
   expect_invalid("volume { geometry { sphere { radius: 1 } } } h0: 5", "h0",
                  "at least 4 are needed");
+  expect_invalid(
+      "volume { geometry { box { min { x: -10 y: -10 } max { x: 10 y: 10 z: 0.05 } } } } h0: 0.5",
+      "h0", "no tetrahedron of that size fits");
   expect_error("volume { geometry { sphere { radius: 1 } } } h0: 0.001",
                ErrorCode::kResourceExhausted, "h0", "h0 must be at least about");
 }
