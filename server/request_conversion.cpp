@@ -195,6 +195,14 @@ class ShapeConverter {
   int64_t grid_samples_ = 0;
 };
 
+}  // namespace
+
+Shape to_shape(const v1::Shape& shape, const ConversionLimits& limits, const std::string& path) {
+  return ShapeConverter(limits, path).convert(shape);
+}
+
+namespace {
+
 // ---------------------------------------------------------------------------------------------
 // The size field.
 

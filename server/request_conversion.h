@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "core/distmesh/problem.h"
 #include "meshd/v1/request.pb.h"
@@ -46,6 +47,10 @@ struct ConversionLimits {
 //   request  the API message, as received or parsed from text
 //   limits   the caller's limits
 Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits = {});
+
+// One plane shape tree at `path` (its errors name fields below it), as to_problem converts the
+// geometry: a 3D extrusion's or revolution's profile.
+Shape to_shape(const v1::Shape& shape, const ConversionLimits& limits, const std::string& path);
 
 // to_problem (to_problem3, volume_conversion.h, for a request with a volume), then the
 // service's options (options.*) with their ranges. Snapshots of a request

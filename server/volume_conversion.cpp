@@ -106,6 +106,21 @@ class Shape3Converter {
         out.node = HalfSpace{normal, finite(in.half_space().offset(), p + ".offset")};
         break;
       }
+      case v1::Shape3::kExtrusion: {
+        const std::string p = path + ".extrusion";
+        const auto& e = in.extrusion();
+        if (!e.has_profile()) throw_invalid(p + ".profile", "required: the plane shape to extrude");
+        out.node = Extrusion{to_shape(e.profile(), limits_, p + ".profile"),
+                             positive(e.height(), p + ".height")};
+        break;
+      }
+      case v1::Shape3::kRevolution: {
+        const std::string p = path + ".revolution";
+        const auto& r = in.revolution();
+        if (!r.has_profile()) throw_invalid(p + ".profile", "required: the plane shape to revolve");
+        out.node = Revolution{to_shape(r.profile(), limits_, p + ".profile")};
+        break;
+      }
       case v1::Shape3::kUnion:
         out.node = csg(CsgOp::kUnion, in.union_().shapes(), path + ".union", depth, name);
         break;
@@ -167,7 +182,8 @@ class Shape3Converter {
       case v1::Shape3::KIND_NOT_SET:
         throw_invalid(path,
                       "no shape kind set; set exactly one of sphere, box, cylinder, cone, torus, "
-                      "half_space, union, intersection, difference, translate, rotate, scale");
+                      "half_space, extrusion, revolution, union, intersection, difference, "
+                      "translate, rotate, scale");
     }
     return out;
   }

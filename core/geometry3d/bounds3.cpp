@@ -58,6 +58,22 @@ Box3 primitive_box(Op3 op, const double* q) {
       const Vec3 e = disk_extent(load(q + 3), q[6]);
       return around(load(q), e + Vec3{q[7], q[7], q[7]});
     }
+    case Op3::kExtrusion: {
+      // The profile's box times [0, h], mapped by the frame.
+      const double sc = q[12];
+      const Vec3 u = load(q + 3), v = load(q + 6), w = load(q + 9);
+      const double mx = 0.5 * (q[14] + q[16]), my = 0.5 * (q[15] + q[17]), mz = 0.5 * q[13];
+      const double hx = 0.5 * (q[16] - q[14]), hy = 0.5 * (q[17] - q[15]);
+      return around(load(q) + sc * (mx * u + my * v + mz * w),
+                    sc * (hx * abs3(u) + hy * abs3(v) + mz * abs3(w)));
+    }
+    case Op3::kRevolution: {
+      // A cylinder of the profile's largest x between its lowest and highest y.
+      const double sc = q[6];
+      const Vec3 a = load(q + 3);
+      return around(load(q) + (sc * 0.5 * (q[8] + q[9])) * a,
+                    (sc * 0.5 * (q[9] - q[8])) * abs3(a) + disk_extent(a, sc * q[7]));
+    }
     case Op3::kHalfSpace: {
       // Bounded on one side where its normal is a coordinate axis, unbounded otherwise.
       Box3 b = kWholeSpace;

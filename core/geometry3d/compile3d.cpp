@@ -5,10 +5,13 @@
 #include <cstdio>
 #include <initializer_list>
 #include <map>
+#include <memory>
 #include <string>
 #include <variant>
 
 #include "core/common/error.h"
+#include "core/geometry/bounds.h"
+#include "core/geometry/compile.h"
 
 namespace meshd {
 namespace {
@@ -189,6 +192,60 @@ class Emitter3 {
     return push(s, Op3::kHalfSpace, {n.x, n.y, n.z, c}, "half_space");
   }
 
+  // The profile compiled (its errors name its own fields) and its box, which must be bounded.
+  int add_profile(const Shape& profile, const std::string& path, Box& box) {
+    auto compiled = std::make_shared<const Program>(compile_geometry(profile));
+    box = program_bounds(*compiled);
+    if (!is_bounded(box) || is_empty(box)) {
+      throw_invalid(path, std::string("must be ") + (is_empty(box) ? "non-empty" : "bounded") +
+                              ": cut a half-plane off with a bounded shape");
+    }
+    program_.profiles.push_back(std::move(compiled));
+    return static_cast<int>(program_.profiles.size()) - 1;
+  }
+
+  int emit_node(const Shape3& s, const Extrusion& e, const Similarity3& t) {
+    const std::string p = s.path + ".extrusion";
+    const double h = positive(e.height, p + ".height");
+    Box box;
+    const int k = add_profile(e.profile, p + ".profile", box);
+    const Vec3 o = apply(t, {0, 0, 0}), u = rotate(t, {1, 0, 0}), v = rotate(t, {0, 1, 0}),
+               w = rotate(t, {0, 0, 1});
+    check_folded(s,
+                 {o.x, o.y, o.z, t.scale * h, t.scale * box.min.x, t.scale * box.max.x,
+                  t.scale * box.min.y, t.scale * box.max.y},
+                 {t.scale * h});
+    return push(s, Op3::kExtrusion,
+                {o.x, o.y, o.z, u.x, u.y, u.z, v.x, v.y, v.z, w.x, w.y, w.z, t.scale, h, box.min.x,
+                 box.min.y, box.max.x, box.max.y, static_cast<double>(k)},
+                "extrusion");
+  }
+
+  int emit_node(const Shape3& s, const Revolution& r, const Similarity3& t) {
+    const std::string p = s.path + ".revolution";
+    Box box;
+    const int k = add_profile(r.profile, p + ".profile", box);
+    if (!(box.max.x > 0.0)) {
+      throw_invalid(p + ".profile", "must reach x > 0 (its part at x >= 0 is revolved; got x <= " +
+                                        shown(box.max.x) + ")");
+    }
+    // An edge lying on the axis would count as a surface, so that the distance inside near the
+    // axis would be far too small; a profile symmetric about the axis has none.
+    if (box.min.x >= 0.0 && box.min.x <= 1e-9 * box.max.x) {
+      throw_invalid(p + ".profile",
+                    "touches the axis (x = 0) from one side, so its edge there would count as a "
+                    "surface; to reach the axis, make the profile symmetric about it (e.g. a "
+                    "rectangle from x = -r to r)");
+    }
+    const Vec3 o = apply(t, {0, 0, 0}), a = rotate(t, {0, 0, 1});
+    check_folded(s, {o.x, o.y, o.z, t.scale * box.max.x, t.scale * box.min.y, t.scale * box.max.y},
+                 {t.scale * box.max.x});
+    return push(s, Op3::kRevolution,
+                {o.x, o.y, o.z, a.x, a.y, a.z, t.scale, box.max.x, box.min.y, box.max.y,
+                 static_cast<double>(k)},
+                "revolution");
+  }
+
   // Left fold: a, b, op, c, op, ... keeps one accumulated value on the stack; a difference
   // negates each subtrahend before its max.
   int emit_node(const Shape3& s, const Csg3& csg, const Similarity3& t) {
@@ -234,6 +291,7 @@ Program3 compile_geometry3(const Shape3& root) {
   Program3 program;
   program.root_path = root.path;
   Emitter3(program).emit(root, Similarity3{});
+  for (const auto& profile : program.profiles) program.profile_views->push_back(profile->view());
   return program;
 }
 

@@ -22,11 +22,24 @@
 //                                             bottom and top radii, height)
 //   kTorus      cx cy cz ax ay az R r        (centre, unit axis, major and minor radii)
 //   kHalfSpace  nx ny nz c                   (unit normal; inside where n.p <= c)
+//   kExtrusion  ox oy oz ux uy uz vx vy vz wx wy wz s h x0 y0 x1 y1 k
+//               (the profile's origin; its x, y and extrusion axes as unit vectors; the scale;
+//               the height and the profile's box in the profile's own units; its index k in
+//               `profiles`)
+//   kRevolution ox oy oz ax ay az s R z0 z1 k
+//               (a point on the axis, the unit axis, the scale; the profile's largest x, its
+//               lowest and highest y, in its own units; its index k in `profiles`)
+//
+// Extrusions and revolutions evaluate their 2D profile, compiled (core/geometry/program.h) and
+// kept in `profiles`; the view points at one 2D view per profile.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "core/geometry/program.h"
 
 namespace meshd {
 
@@ -39,6 +52,8 @@ enum class Op3 : uint32_t {
   kFrustum,
   kTorus,
   kHalfSpace,
+  kExtrusion,
+  kRevolution,
   kMin,
   kMax,
   kNegate,
@@ -61,6 +76,7 @@ struct Program3View {
   const Instruction3* code;
   uint32_t size;
   const double* params;
+  const ProgramView* profiles;  // one per 2D profile
 };
 
 struct Program3 {
@@ -68,9 +84,13 @@ struct Program3 {
   std::vector<double> params;
   std::vector<PrimitiveInfo3> primitives;
   std::string root_path;  // the tree's root, for errors about the whole domain
+  // The 2D profiles and their views, shared so that a copy of the program keeps valid views.
+  std::vector<std::shared_ptr<const Program>> profiles;
+  std::shared_ptr<std::vector<ProgramView>> profile_views =
+      std::make_shared<std::vector<ProgramView>>();
 
   Program3View view() const {
-    return {code.data(), static_cast<uint32_t>(code.size()), params.data()};
+    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), profile_views->data()};
   }
 };
 

@@ -10,6 +10,7 @@
 
 #include "core/common/hd.h"
 #include "core/common/vec3.h"
+#include "core/geometry/sdf_eval.cuh"
 #include "core/geometry3d/program3d.h"
 
 namespace meshd {
@@ -100,6 +101,26 @@ MESHD_HD inline double sdf3_half_space(const double* q, Vec3 p) {
   return q[0] * p.x + q[1] * p.y + q[2] * p.z - q[3];
 }
 
+// A profile's distance d2 and the slab's dz combined as a box's faces are: exact outside where
+// both are, and the larger inside.
+MESHD_HD inline double sdf3_extrusion(const double* q, const ProgramView* profiles, Vec3 p) {
+  using namespace sdf3_detail;
+  const Vec3 d = p - load3(q);
+  const double s = q[12], h = q[13];
+  const double x = dot(d, load3(q + 3)) / s, y = dot(d, load3(q + 6)) / s;
+  const double z = dot(d, load3(q + 9)) / s;
+  const double d2 = eval_sdf(profiles[static_cast<int>(q[18])], Vec2{x, y});
+  const double dz = fabs(z - 0.5 * h) - 0.5 * h;
+  return s * (length2(maxd(d2, 0.0), maxd(dz, 0.0)) + mind(maxd(d2, dz), 0.0));
+}
+
+// The profile's distance at (distance from the axis, height along it).
+MESHD_HD inline double sdf3_revolution(const double* q, const ProgramView* profiles, Vec3 p) {
+  const sdf3_detail::AxialCoords a = sdf3_detail::axial_coords(q, q + 3, p);
+  const double s = q[6];
+  return s * eval_sdf(profiles[static_cast<int>(q[10])], Vec2{a.radial / s, a.axial / s});
+}
+
 MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins, Vec3 p) {
   const double* q = prog.params + ins.operand;
   switch (ins.op) {
@@ -115,6 +136,10 @@ MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins
       return sdf3_torus(q, p);
     case Op3::kHalfSpace:
       return sdf3_half_space(q, p);
+    case Op3::kExtrusion:
+      return sdf3_extrusion(q, prog.profiles, p);
+    case Op3::kRevolution:
+      return sdf3_revolution(q, prog.profiles, p);
     default:
       return NAN;
   }

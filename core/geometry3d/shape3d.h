@@ -60,6 +60,22 @@ struct HalfSpace {
   double offset = 0.0;
 };
 
+// A 2D shape (core/geometry/shape.h) in the xy plane, extruded along +z from z = 0 to `height`
+// before any enclosing transform. Its distance is exact where the profile's is: the profile's
+// and the slab's combined as a box's faces are.
+struct Extrusion {
+  Shape profile;        // bounded
+  double height = 0.0;  // > 0
+};
+
+// A 2D shape revolved about the z axis before any enclosing transform: the profile's (x, y) are
+// the solid's (distance from the axis, z), so only its part with x >= 0 counts. Exact where the
+// profile's distance is and the profile either stays off the axis or is symmetric about it
+// (where it crosses the axis asymmetrically, a bound near the axis).
+struct Revolution {
+  Shape profile;  // bounded, reaching x > 0, not touching x = 0 from one side only
+};
+
 struct Shape3;
 
 // Union and intersection take one or more operands; difference is operands[0] minus the rest.
@@ -91,7 +107,9 @@ struct Transformed3 {
 };
 
 struct Shape3 {
-  std::variant<Sphere, Cuboid, Cylinder, Frustum, Torus, HalfSpace, Csg3, Transformed3> node;
+  std::variant<Sphere, Cuboid, Cylinder, Frustum, Torus, HalfSpace, Extrusion, Revolution, Csg3,
+               Transformed3>
+      node;
   std::string name;  // boundary group name for the primitives below; may be empty
   std::string path;  // request field path of this node, for errors
 };

@@ -9,6 +9,9 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/geometry/boundary_samples.h"
+#include "core/geometry/sdf_eval.cuh"
 #include "core/geometry3d/sdf3_eval.cuh"
 
 namespace meshd {
@@ -119,9 +122,59 @@ class Sampler {
   double count_ = 0.0;
 };
 
+// The profile's corners, as 2D meshes pin them (boundary_corners), in its own units.
+std::vector<Vec2> profile_corners(const Program& profile, const Box& box) {
+  return boundary_corners(profile, box);
+}
+
 // The candidates of one primitive (program3d.h gives the layout of q).
-void sample_primitive(Op3 op, const double* q, Sampler& s) {
+void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler& s,
+                      double spacing) {
   switch (op) {
+    case Op3::kExtrusion: {
+      // The rims of both ends, and a vertical edge at each corner of the profile.
+      const Vec3 o = load(q), u = load(q + 3), v = load(q + 6), w = load(q + 9);
+      const double sc = q[12], h = q[13];
+      const Program& profile = *program.profiles[static_cast<size_t>(q[18])];
+      const Box box{{q[14], q[15]}, {q[16], q[17]}};
+      const auto at = [&](Vec2 p, double z) { return o + sc * (p.x * u + p.y * v + z * w); };
+      const std::vector<Vec2> corners = profile_corners(profile, box);
+      for (Vec2 c : corners) {
+        s.corner(at(c, 0.0));
+        s.corner(at(c, h));
+        s.segment(at(c, 0.0), at(c, h));
+      }
+      for (Vec2 p : boundary_samples(profile, box, spacing / sc, corners)) {
+        s.corner(at(p, 0.0));
+        s.corner(at(p, h));
+      }
+      return;
+    }
+    case Op3::kRevolution: {
+      // Each corner of the profile off the axis turns into a rim; on it, into an apex.
+      const Vec3 o = load(q), a = load(q + 3);
+      const double sc = q[6];
+      const Program& profile = *program.profiles[static_cast<size_t>(q[10])];
+      const Box box{{-q[7], q[8]}, {q[7], q[9]}};
+      const ProgramView view = profile.view();
+      const double tiny = 1e-9 * spacing / sc;
+      for (Vec2 c : profile_corners(profile, box)) {
+        if (c.x < -tiny) continue;
+        const Vec3 centre = o + (sc * c.y) * a;
+        if (c.x > tiny) {
+          s.circle(centre, a, sc * c.x);
+          continue;
+        }
+        // On the axis: an apex unless the outline leaves it square to the axis (a flat end,
+        // smooth once revolved), which the distance's slope across the axis just off it tells.
+        const double dx = 1e-3 * spacing / sc, step = 0.1 * dx;
+        const double slope = (eval_sdf(view, {c.x + dx + step, c.y}) -
+                              eval_sdf(view, {c.x + dx - step, c.y})) /
+                             (2 * step);
+        if (std::fabs(slope) > 1e-3) s.corner(centre);
+      }
+      return;
+    }
     case Op3::kCuboid: {
       const Vec3 c = load(q);
       const Vec3 axes[3] = {q[12] * load(q + 3), q[13] * load(q + 6), q[14] * load(q + 9)};
@@ -171,7 +224,7 @@ std::vector<Vec3> sharp_features3(const Program3& program, double spacing) {
   for (const Instruction3& ins : program.code) {
     if (ins.primitive < 0) continue;
     sampler.set_primitive(program.primitives[ins.primitive].path);
-    sample_primitive(ins.op, program.params.data() + ins.operand, sampler);
+    sample_primitive(program, ins.op, program.params.data() + ins.operand, sampler, spacing);
   }
 
   std::vector<Vec3> out;

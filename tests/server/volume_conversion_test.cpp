@@ -91,6 +91,17 @@ TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
   expect_invalid("volume { geometry { union { } } } h0: 0.2", "volume.geometry.union.shapes",
                  "needs at least 1 shape");
   expect_invalid("volume { geometry { } } h0: 0.2", "volume.geometry", "no shape kind set");
+  expect_invalid(
+      "volume { geometry { extrusion { profile { circle { radius: -1 } } height: 1 } } } h0: 0.2",
+      "volume.geometry.extrusion.profile.circle.radius", "must be finite and > 0");
+  expect_invalid(
+      "volume { geometry { extrusion { profile { circle { radius: 1 } } height: 0 } } } h0: 0.2",
+      "volume.geometry.extrusion.height", "must be finite and > 0");
+  expect_invalid("volume { geometry { revolution { } } } h0: 0.2",
+                 "volume.geometry.revolution.profile", "required");
+  expect_invalid(
+      "volume { geometry { revolution { profile { rectangle { max { x: 1 y: 1 } } } } } } h0: 0.2",
+      "volume.geometry.revolution.profile", "touches the axis");
   expect_invalid("volume { geometry { sphere { radius: 1 } name: \"a b\" } } h0: 0.2",
                  "volume.geometry.name", "is not allowed");
   expect_invalid("volume { geometry { torus { major_radius: 0.5 minor_radius: 1 } } } h0: 0.2",
