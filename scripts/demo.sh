@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: builds meshd and meshctl, starts meshd on its embedded defaults (127.0.0.1:50051;
 # a GPU worker per visible GPU, the CPU otherwise), meshes every example through it with
-# meshctl and writes each mesh as MSH 4.1, MSH 2.2, VTU and SVG (the tetrahedra of
-# examples/volumes/: no SVG) into out/, then stops meshd with SIGTERM.
+# meshctl and writes each mesh as MSH 4.1, MSH 2.2, VTU and SVG (examples/volumes/: tetrahedra,
+# the SVG a picture of the surface) into out/, then stops meshd with SIGTERM.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
@@ -10,10 +10,11 @@ mkdir -p out
 
 build/bin/meshd >out/meshd.log 2>&1 &
 meshd_pid=$!
-trap '# Volumes (3D): tetrahedra in the same formats; no SVG picture of them yet.
+trap '# Volumes (3D): tetrahedra in the same formats, the SVG a picture of the surface.
 for request in examples/volumes/*.textproto; do
   name=$(basename "$request" .textproto)
-  build/bin/meshctl generate "$request" -o "out/$name.msh" -o "out/$name.msh22" -o "out/$name.vtu"
+  build/bin/meshctl generate "$request" \
+    -o "out/$name.msh" -o "out/$name.msh22" -o "out/$name.vtu" -o "out/$name.svg"
 done
 
 kill -TERM $meshd_pid 2>/dev/null || true' EXIT

@@ -14,6 +14,7 @@
 #include "core/mesh/msh41_writer.h"
 #include "core/mesh/svg_writer.h"
 #include "core/mesh/vtu_writer.h"
+#include "core/mesh3d/svg_surface3d.h"
 
 namespace meshd {
 namespace {
@@ -91,9 +92,7 @@ void write_any_mesh(const M& mesh, std::ostream& out, MeshFormat format) {
       if constexpr (std::is_same_v<M, Mesh>) {
         return write_svg(mesh, out);
       } else {
-        throw_invalid("format",
-                      "a tetrahedral mesh has no SVG picture; allowed: msh41, msh41-binary, "
-                      "msh22, vtu");
+        return write_svg_surface3d(mesh, out);
       }
   }
   throw Error(ErrorCode::kInternal, "", "write_mesh: unknown MeshFormat value");

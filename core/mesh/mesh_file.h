@@ -41,12 +41,12 @@ void write_mesh_file(const Mesh& mesh, const std::string& path, MeshFormat forma
 
 // Writes a tetrahedral mesh to out in format: the tetrahedra in the domain's physical group
 // (dimension 3), the boundary faces as triangles in one group per boundary name (dimension 2).
-// A volume has no SVG picture: kSvg gets Error(kInvalidArgument) naming field "format" and the
-// formats allowed. Bad indices get the writers' Error(kInternal). out should be in binary mode.
+// kSvg is a picture of its surface (svg_surface3d.h). Bad indices get the writers'
+// Error(kInternal). out should be in binary mode.
 void write_mesh(const TetMesh& mesh, std::ostream& out, MeshFormat format);
 
 // Writes a tetrahedral mesh to the file at path as write_mesh_file does (a temporary file renamed
-// over path; the same errors, and kSvg's as above, with no file left behind).
+// over path; the same errors, with no file left behind).
 void write_mesh_file(const TetMesh& mesh, const std::string& path, MeshFormat format);
 
 }  // namespace meshd
