@@ -9,7 +9,8 @@
 
 Geometry: circle, rectangle, polygon, ellipse, half_plane, distance_grid (a numpy array of
 signed distances); | & - and union, intersection, difference; .translate(), .rotate(),
-.scale(), .named(). Size: uniform, graded, grid, feature. Requests: request(). Clients: Client
+.scale(), .named(). Volumes (tetrahedra, a TetMesh): sphere, box, cylinder, cone, torus,
+half_space, extrude(shape, height), revolve(shape), combined and moved the same way. Size: uniform, graded, grid, feature. Requests: request(). Clients: Client
 and aio.Client. Events: Queued, Started, Progress, Snapshot, Done. Errors: MeshdError and its
 subclasses. The meshd.v1 messages and stubs are generated from the repository's proto/ when the
 package is built.
@@ -25,10 +26,12 @@ from meshd.events import Done, Progress, Queued, Snapshot, Started
 from meshd.geometry import (Shape, circle, difference, distance_grid, ellipse, half_plane,
                             intersection, polygon, rectangle, union)
 from meshd.job_info import JobInfo
-from meshd.mesh import Mesh, Quality, RunStats
+from meshd.mesh import Mesh, Quality, RunStats, TetMesh
 from meshd.request import request
 from meshd.size_field import feature, graded, grid, uniform
-from meshd.v1 import geometry_pb2, mesh_pb2, request_pb2, service_pb2
+from meshd.solid import (Solid, box, cone, cylinder, extrude, half_space, revolve, sphere,
+                         torus)
+from meshd.v1 import geometry3d_pb2, geometry_pb2, mesh_pb2, request_pb2, service_pb2
 
 __version__ = "0.1.0"
 
@@ -40,6 +43,7 @@ __all__ = [
     "Queued", "Started", "Progress", "Snapshot", "Done",
     "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "distance_grid", "union",
     "intersection", "difference",
-    "JobInfo", "Mesh", "Quality", "RunStats", "request", "uniform", "graded", "grid", "feature",
-    "geometry_pb2", "mesh_pb2", "request_pb2", "service_pb2",
+    "Solid", "sphere", "box", "cylinder", "cone", "torus", "half_space", "extrude", "revolve",
+    "JobInfo", "Mesh", "TetMesh", "Quality", "RunStats", "request", "uniform", "graded", "grid",
+    "feature", "geometry_pb2", "geometry3d_pb2", "mesh_pb2", "request_pb2", "service_pb2",
 ]

@@ -8,11 +8,12 @@ and the async clients share the decoder; it does no I/O.
 
 import hashlib
 from dataclasses import dataclass
+from typing import Union
 
 import numpy as np
 
 from meshd.errors import BadResult
-from meshd.mesh import Mesh
+from meshd.mesh import Mesh, TetMesh, mesh_from_proto
 from meshd.request import BACKEND_NAMES
 from meshd.v1 import mesh_pb2
 
@@ -56,7 +57,7 @@ class Snapshot:
 @dataclass(frozen=True, eq=False)
 class Done:
     job_id: str
-    mesh: Mesh
+    mesh: Union[Mesh, TetMesh]  # a TetMesh for a volume
 
 
 class EventDecoder:
@@ -121,4 +122,4 @@ class EventDecoder:
                             f"SHA-256 {digest}; the server sent {done.result_bytes} bytes with "
                             f"{done.result_sha256}")
         data = mesh_pb2.MeshData.FromString(payload)
-        return Mesh.from_proto(data, done, job_id=self.job_id)
+        return mesh_from_proto(data, done, job_id=self.job_id)

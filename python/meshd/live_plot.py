@@ -34,7 +34,7 @@ class LivePlot:
         elif isinstance(event, Snapshot) and event.triangles is not None:
             if time.monotonic() - self.last_draw >= REDRAW_INTERVAL_S:
                 self._draw(event.points, event.triangles, f"iteration {event.iteration}")
-        elif isinstance(event, Done):
+        elif isinstance(event, Done) and hasattr(event.mesh, "triangles"):  # not a volume
             m = event.mesh
             q = f", q_min {m.quality.q_min:.3f}" if m.quality else ""
             self._draw(m.points, m.triangles, f"{len(m.points)} nodes{q}")

@@ -8,7 +8,7 @@ Arrays, as in meshd.v1.MeshData (integer indices, counter-clockwise triangles):
     boundary_names  the group names (the request's shape names, or "circle1", ...)
 
 Physical groups, as meshd's own MSH and VTU writers number them: "domain" is 1 (the triangles,
-dimension 2) and boundary group i is i + 2 (dimension 1).
+dimension 2) and boundary group i is i + 2 (dimension 1). A volume's result is a TetMesh.
 """
 
 from dataclasses import dataclass, fields
@@ -27,16 +27,22 @@ def _from_proto(cls, message):
 
 @dataclass(frozen=True)
 class Quality:
-    """Radius ratio 2 r_in / R_circ (1 equilateral, 0 degenerate) over the triangles;
-    histogram[k] counts q in [k/10, (k+1)/10)."""
+    """Radius ratio 2 r_in / R_circ over the triangles (3 r_in / R_circ over a volume's
+    tetrahedra; 1 equilateral, 0 degenerate); histogram[k] counts q in [k/10, (k+1)/10). A
+    volume's report has the dihedral angles' range and its volume, a plane's the smallest
+    angle."""
     q_min: float
     q_mean: float
     min_angle_deg: float
     histogram: tuple
+    min_dihedral_deg: float = 0.0
+    max_dihedral_deg: float = 0.0
+    volume: float = 0.0
 
     @classmethod
     def from_proto(cls, q):
-        return cls(q.q_min, q.q_mean, q.min_angle_deg, tuple(q.histogram))
+        return cls(q.q_min, q.q_mean, q.min_angle_deg, tuple(q.histogram), q.min_dihedral_deg,
+                   q.max_dihedral_deg, q.volume)
 
 
 @dataclass(frozen=True)
@@ -57,6 +63,9 @@ class RunStats:
     t_mesh: float
     queue_wait_s: float
     fold_refills: int
+    fixed_nodes: int = 0
+    sliver_moves: int = 0
+    t_slivers: float = 0.0
 
     @classmethod
     def from_proto(cls, stats):
@@ -160,3 +169,94 @@ class Mesh:
         return (f"meshd.Mesh({len(self.points)} nodes, {len(self.triangles)} triangles, "
                 f"{len(self.boundary_edges)} boundary edges in {len(self.boundary_names)} "
                 f"groups{q})")
+
+
+@dataclass(frozen=True, eq=False)
+class TetMesh:
+    """A volume job's mesh (MeshData of dimension 3):
+        points          #N by 3 float64, in the request's length unit
+        tetrahedra      #M by 4 int32, positively oriented (a, b, c counter-clockwise from d)
+        boundary_faces  #F by 3 int32, counter-clockwise seen from outside
+        boundary_tags   #F int32, each face's group: an index into boundary_names
+        boundary_names  the group names (the request's solid names, or "sphere1", ...)
+    with the job's quality and run statistics (None for a mesh built from MeshData alone).
+    Physical groups as meshd's writers number them: "domain" 1 (the tetrahedra, dimension 3),
+    boundary group i is i + 2 (dimension 2)."""
+    points: np.ndarray
+    tetrahedra: np.ndarray
+    boundary_faces: np.ndarray
+    boundary_tags: np.ndarray
+    boundary_names: list
+    quality: Quality = None
+    stats: RunStats = None
+    job_id: str = ""
+    backend: str = ""
+    device: str = ""
+
+    @classmethod
+    def from_proto(cls, data, done=None, job_id=""):
+        """A TetMesh from a meshd.v1.MeshData of dimension 3 and, when given, its Done event."""
+        return cls(
+            points=np.array(data.points, dtype=np.float64).reshape(-1, 3),
+            tetrahedra=np.array(data.tetrahedra, dtype=np.int32).reshape(-1, 4),
+            boundary_faces=np.array(data.boundary_faces, dtype=np.int32).reshape(-1, 3),
+            boundary_tags=np.array(data.boundary_tags, dtype=np.int32),
+            boundary_names=list(data.boundary_names),
+            quality=Quality.from_proto(done.quality) if done is not None else None,
+            stats=RunStats.from_proto(done.stats) if done is not None else None,
+            job_id=job_id,
+            backend=BACKEND_NAMES.get(done.backend, "") if done is not None else "",
+            device=done.device if done is not None else "")
+
+    @property
+    def boundary_groups(self):
+        """{name: #k by 3 faces} for every boundary group."""
+        return {name: self.boundary_faces[self.boundary_tags == i]
+                for i, name in enumerate(self.boundary_names)}
+
+    def volumes(self):
+        """#M signed tetrahedron volumes (positive: positively oriented)."""
+        p = self.points[self.tetrahedra]
+        return np.einsum("ij,ij->i", p[:, 1] - p[:, 0],
+                         np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) / 6.0
+
+    def to_meshio(self):
+        """A meshio.Mesh: tetrahedra and boundary triangles with gmsh:physical /
+        gmsh:geometrical tags and field_data naming the groups (so .msh keeps them)."""
+        import meshio  # optional: pip install meshio, Debian python3-meshio
+
+        group_tags = self.boundary_tags + DOMAIN_PHYSICAL_TAG + 1
+        domain_tags = np.full(len(self.tetrahedra), DOMAIN_PHYSICAL_TAG, dtype=np.int32)
+        dim_tags = np.tile([3, DOMAIN_PHYSICAL_TAG], (len(self.points), 1))
+        dim_tags[self.boundary_faces[:, 0]] = np.column_stack(
+            [np.full_like(group_tags, 2), group_tags])
+        field_data = {DOMAIN_GROUP_NAME: np.array([DOMAIN_PHYSICAL_TAG, 3])}
+        for i, name in enumerate(self.boundary_names):
+            field_data[name] = np.array([i + DOMAIN_PHYSICAL_TAG + 1, 2])
+        return meshio.Mesh(
+            self.points,
+            [("tetra", self.tetrahedra.astype(np.int64)),
+             ("triangle", self.boundary_faces.astype(np.int64))],
+            cell_data={"gmsh:physical": [domain_tags, group_tags],
+                       "gmsh:geometrical": [domain_tags, group_tags]},
+            point_data={"gmsh:dim_tags": dim_tags},
+            field_data=field_data)
+
+    def write(self, path, file_format=None):
+        """Writes the mesh with meshio, as Mesh.write does."""
+        options = {}
+        if file_format is None and str(path).endswith(".msh"):
+            file_format, options = "gmsh", {"binary": False}
+        self.to_meshio().write(path, file_format=file_format, **options)
+
+    def __repr__(self):
+        q = f", q_min {self.quality.q_min:.3f}" if self.quality else ""
+        return (f"meshd.TetMesh({len(self.points)} nodes, {len(self.tetrahedra)} tetrahedra, "
+                f"{len(self.boundary_faces)} boundary faces in {len(self.boundary_names)} "
+                f"groups{q})")
+
+
+def mesh_from_proto(data, done=None, job_id=""):
+    """A Mesh, or a TetMesh for a volume's result (MeshData.dimension 3)."""
+    cls = TetMesh if data.dimension == 3 else Mesh
+    return cls.from_proto(data, done, job_id=job_id)

@@ -56,8 +56,9 @@ def _target_move(request):
 def summary(mesh):
     q = f", q_min {mesh.quality.q_min:.3f} q_mean {mesh.quality.q_mean:.4f}" if mesh.quality else ""
     its = f", {mesh.stats.iterations} iterations" if mesh.stats else ""
-    return (f"{len(mesh.points)} nodes, {len(mesh.triangles)} triangles{its}{q} on "
-            f"{mesh.device or mesh.backend}")
+    cells = (f"{len(mesh.tetrahedra)} tetrahedra" if hasattr(mesh, "tetrahedra")
+             else f"{len(mesh.triangles)} triangles")
+    return f"{len(mesh.points)} nodes, {cells}{its}{q} on {mesh.device or mesh.backend}"
 
 
 class TextBar:

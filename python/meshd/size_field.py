@@ -6,12 +6,14 @@ at p is h0 * h(p).
     size=[meshd.graded(hole, 1, 4, 2), meshd.uniform(1.5)]   # the minimum of both
     meshd.grid(h, origin=(0, 0), spacing=0.1)          # h[j, i] at (0.1 i, 0.1 j), bilinear
     meshd.feature(3, h_min=0.5, h_max=10)              # 3 edges across narrow channels
+    meshd.graded(meshd.sphere(0.2), 1, 3, 3)           # a volume's: fine near the ball
 """
 
 import numpy as np
 
 from meshd.geometry import as_shape_proto
-from meshd.v1 import geometry_pb2
+from meshd.solid import Solid, as_solid_proto
+from meshd.v1 import geometry3d_pb2, geometry_pb2
 
 
 def uniform(value=1.0):
@@ -23,7 +25,15 @@ def uniform(value=1.0):
 
 def graded(shape, h_min, slope, h_max):
     """A SizeTerm growing with the distance to shape: h = min(h_max, h_min + slope * |d(p)|).
-    h_min > 0; slope >= 0, relative size per length unit; h_max >= h_min."""
+    h_min > 0; slope >= 0, relative size per length unit; h_max >= h_min. A Solid gives the
+    volume's term (a SizeTerm3), a plane Shape the plane's."""
+    if isinstance(shape, (Solid, geometry3d_pb2.Shape3)):
+        term = geometry3d_pb2.SizeTerm3()
+        term.distance.shape.CopyFrom(as_solid_proto(shape))
+        term.distance.h_min = float(h_min)
+        term.distance.slope = float(slope)
+        term.distance.h_max = float(h_max)
+        return term
     term = geometry_pb2.SizeTerm()
     term.distance.shape.CopyFrom(as_shape_proto(shape))
     term.distance.h_min = float(h_min)
@@ -60,6 +70,26 @@ def feature(elements, h_min, h_max):
     term.feature.h_min = float(h_min)
     term.feature.h_max = float(h_max)
     return term
+
+
+def size_field3(size):
+    """A volume's SizeField3 from a SizeField3, one term, a number (uniform) or a list of them:
+    uniform terms and graded ones about a Solid (grids and feature sizes are plane only)."""
+    if isinstance(size, geometry3d_pb2.SizeField3):
+        return size
+    field = geometry3d_pb2.SizeField3()
+    for term in size if isinstance(size, (list, tuple)) else [size]:
+        if isinstance(term, (int, float)):
+            term = uniform(term)
+        if isinstance(term, geometry_pb2.SizeTerm) and term.WhichOneof("kind") == "uniform":
+            field.terms.add().uniform.CopyFrom(term.uniform)
+        elif isinstance(term, geometry3d_pb2.SizeTerm3):
+            field.terms.append(term)
+        else:
+            raise TypeError("size of a volume: expected meshd.uniform(...) or "
+                            "meshd.graded(solid, ...), got a plane-only term or "
+                            f"{type(term).__name__}")
+    return field
 
 
 def size_field(size):

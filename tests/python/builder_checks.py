@@ -210,13 +210,42 @@ def test_event_decoder(examples):
             assert e.code == grpc.StatusCode.DATA_LOSS, e
 
 
+def test_volume_builders(examples):
+    """Solids and volume requests: the cube minus a ball equals its example file; extrusions,
+    revolutions, transforms and a graded size about a solid; plane-only arguments refused."""
+    part = meshd.box((-1, -1, -1), (1, 1, 1), name="box") - meshd.sphere(0.5, name="ball")
+    same(meshd.request(part, h0=0.1),
+         read_example(examples, "volumes/box_minus_sphere.textproto"), "box minus sphere")
+    gear = meshd.extrude(meshd.circle(1) - meshd.circle(0.3), height=0.4).rotate(90, axis=(1, 0, 0))
+    req = meshd.request(gear | meshd.revolve(meshd.circle(0.2, center=(1, 0))), h0=0.05,
+                        size=[meshd.graded(meshd.sphere(0.2), 1, 3, 3), 2], auto_features=False)
+    assert not req.HasField("geometry") and req.volume.auto_features is False
+    shapes = req.volume.geometry.union.shapes
+    assert shapes[0].rotate.shape.extrusion.height == 0.4, shapes[0]
+    assert shapes[0].rotate.axis.x == 1 and shapes[1].revolution.profile.circle.radius == 0.2
+    terms = req.volume.size.terms
+    assert terms[0].distance.shape.sphere.radius == 0.2 and terms[1].uniform.value == 2, terms
+    for bad in ({"bbox": ((0, 0), (1, 1))}, {"auto_corners": True}, {"gradation": 0.1},
+                {"size": meshd.feature(3, 1, 2)}):
+        try:
+            meshd.request(part, h0=0.1, **bad)
+            raise AssertionError(f"{bad} accepted with a solid")
+        except (ValueError, TypeError):
+            pass
+    try:
+        meshd.request(meshd.circle(1), h0=0.1, auto_features=True)
+        raise AssertionError("auto_features accepted with a plane shape")
+    except ValueError:
+        pass
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--examples", required=True)
     args = parser.parse_args()
     return run_checks([test_installed_package, test_examples_from_builders, test_operators,
                        test_primitives_and_transforms, test_request_fields, test_size_grid,
-                       test_error_parsing,
+                       test_error_parsing, test_volume_builders,
                        test_event_decoder], args.examples)
 
 

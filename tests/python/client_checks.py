@@ -52,6 +52,44 @@ def test_distance_grid(ctx):
     assert len(outer) > 10 and np.allclose(r, 1, atol=h * h / 4), f"outer nodes at radii {r}"
 
 
+def test_volume(ctx):
+    """A cube minus a ball through the real meshd: a TetMesh whose tetrahedra are positive and
+    fill the volume, its groups, its file read back; the volume's own errors."""
+    part = meshd.box((-1, -1, -1), (1, 1, 1), name="box") - meshd.sphere(0.5, name="ball")
+    mesh = ctx.client.generate(meshd.request(part, h0=0.25))
+    assert isinstance(mesh, meshd.TetMesh), type(mesh)
+    assert mesh.points.shape[1] == 3 and mesh.tetrahedra.shape[1] == 4, mesh
+    assert mesh.boundary_faces.shape == (len(mesh.boundary_tags), 3), mesh
+    volumes = mesh.volumes()
+    exact = 8 - 4 / 3 * math.pi * 0.5 ** 3
+    assert volumes.min() > 0 and abs(volumes.sum() - exact) < 0.02 * exact, volumes.sum()
+    assert abs(mesh.quality.volume - volumes.sum()) < 1e-9 * exact, mesh.quality
+    assert mesh.quality.min_dihedral_deg > 10 and mesh.quality.q_min > 0.2, mesh.quality
+    assert mesh.backend == "cpu" and mesh.stats.fixed_nodes > 8, (mesh.backend, mesh.stats)
+    assert sorted(mesh.boundary_groups) == ["ball", "box"], mesh.boundary_names
+    try:
+        import meshio
+    except ImportError:
+        meshio = None
+    if meshio:
+        path = os.path.join(ctx.tmp, "part.msh")
+        mesh.write(path)
+        back = meshio.read(path)
+        tets = sum(len(c.data) for c in back.cells if c.type == "tetra")
+        assert (len(back.points), tets) == (len(mesh.points), len(mesh.tetrahedra)), back
+        assert {"domain", "box", "ball"} <= set(back.field_data), back.field_data
+    try:
+        ctx.client.generate(meshd.request(part, h0=0.25, backend="gpu"))
+        raise AssertionError("a volume ran on BACKEND_GPU")
+    except meshd.FailedPrecondition:
+        pass
+    try:
+        ctx.client.generate(meshd.request(meshd.sphere(-1), h0=0.25))
+        raise AssertionError("a negative radius was accepted")
+    except meshd.InvalidArgument as e:
+        assert "volume.geometry.sphere.radius" in str(e), e
+
+
 def same_rows(a, b):
     """Whether a and b hold the same rows in any order (to 1e-12)."""
     order = lambda x: x[np.lexsort(x.T[::-1])]  # noqa: E731
@@ -180,7 +218,24 @@ def test_plate_example(ctx):
     assert not os.path.exists(out + ".bad"), "a failed request wrote its output"
 
 
+def test_pulley_example(ctx):
+    """examples/python/pulley.py, beside plate.py: tetrahedra in a file meshio reads."""
+    try:
+        import meshio
+    except ImportError:
+        raise Skip("no meshio (python3-meshio)")
+    out = os.path.join(ctx.tmp, "pulley.vtu")
+    pulley = os.path.join(os.path.dirname(ctx.plate), "pulley.py")
+    r = subprocess.run([sys.executable, pulley, "--server", ctx.address, "--deadline",
+                        str(TIMEOUT_S), "--h0", "0.12", out], capture_output=True, text=True,
+                       timeout=TIMEOUT_S)
+    assert r.returncode == 0 and "wrote " in r.stdout, f"exit {r.returncode}\n{r.stderr}"
+    back = meshio.read(out)
+    assert sum(len(c.data) for c in back.cells if c.type == "tetra") > 0, back
+
+
 if __name__ == "__main__":
-    sys.exit(main([test_generate, test_distance_grid, test_to_meshio, test_snapshots,
-                   test_submit_watch_jobs, test_aio, test_optional_reporters, test_plate_example],
+    sys.exit(main([test_generate, test_distance_grid, test_volume, test_to_meshio, test_snapshots,
+                   test_submit_watch_jobs, test_aio, test_optional_reporters, test_plate_example,
+                   test_pulley_example],
                   "--plate"))

@@ -1,0 +1,222 @@
+"""3D geometry builders: a CSG tree of solids written as Python expressions, built as the
+meshd.v1.Shape3 message the server reads in a volume request.
+
+    part = (meshd.box((-1, -1, -1), (1, 1, 1)).named("box")
+            - meshd.sphere(0.5).named("ball"))
+    shaft = meshd.cylinder(0.2, 3).rotate(90, axis=(1, 0, 0))
+    gear = meshd.extrude(meshd.circle(1) - meshd.circle(0.3), height=0.4)
+    ring = meshd.revolve(meshd.circle(0.3, center=(1, 0)))        # a torus
+
+`a | b` is the union, `a & b` the intersection, `a - b` the difference, as for plane shapes.
+Lengths are in the request's length unit, angles in degrees. Solids are immutable.
+"""
+
+from meshd.geometry import as_shape_proto
+from meshd.v1 import geometry3d_pb2
+
+
+def _vec3(xyz, what):
+    """A Vec3 from any three numbers; `what` names the argument in the error."""
+    try:
+        x, y, z = (float(v) for v in xyz)
+    except (TypeError, ValueError):
+        raise TypeError(f"{what}: expected a point (x, y, z), got {xyz!r}") from None
+    return geometry3d_pb2.Vec3(x=x, y=y, z=z)
+
+
+class Solid:
+    """One node of the 3D geometry tree. `proto` is a meshd.v1.Shape3 (a copy)."""
+
+    __slots__ = ("_proto",)
+
+    def __init__(self, proto):
+        self._proto = proto
+
+    @property
+    def proto(self):
+        copy = geometry3d_pb2.Shape3()
+        copy.CopyFrom(self._proto)
+        return copy
+
+    @property
+    def kind(self):
+        """Which of the proto's kinds this node is: "sphere", "box", "extrusion", ..."""
+        return self._proto.WhichOneof("kind")
+
+    @property
+    def name(self):
+        return self._proto.name
+
+    def named(self, name):
+        """This solid with a boundary-group name for its unnamed primitives' faces."""
+        proto = self.proto
+        proto.name = name
+        return Solid(proto)
+
+    def __or__(self, other):
+        return union(self, other)
+
+    def __and__(self, other):
+        return intersection(self, other)
+
+    def __sub__(self, other):
+        return difference(self, other)
+
+    def translate(self, offset):
+        """This solid moved by offset (dx, dy, dz)."""
+        proto = geometry3d_pb2.Shape3()
+        proto.translate.offset.CopyFrom(_vec3(offset, "offset"))
+        proto.translate.shape.CopyFrom(self._proto)
+        return Solid(proto)
+
+    def rotate(self, angle_deg, axis=(0.0, 0.0, 1.0), center=(0.0, 0.0, 0.0)):
+        """This solid turned by angle_deg degrees (right-handed) about the line through center
+        along axis."""
+        proto = geometry3d_pb2.Shape3()
+        proto.rotate.angle_deg = float(angle_deg)
+        proto.rotate.axis.CopyFrom(_vec3(axis, "axis"))
+        proto.rotate.center.CopyFrom(_vec3(center, "center"))
+        proto.rotate.shape.CopyFrom(self._proto)
+        return Solid(proto)
+
+    def scale(self, factor, center=(0.0, 0.0, 0.0)):
+        """This solid scaled by factor (> 0) about center."""
+        proto = geometry3d_pb2.Shape3()
+        proto.scale.factor = float(factor)
+        proto.scale.center.CopyFrom(_vec3(center, "center"))
+        proto.scale.shape.CopyFrom(self._proto)
+        return Solid(proto)
+
+    def __repr__(self):
+        from google.protobuf import text_format
+        return f"meshd.Solid({text_format.MessageToString(self._proto, as_one_line=True)})"
+
+
+def as_solid_proto(solid):
+    """A meshd.v1.Shape3 from a Solid or a meshd.v1.Shape3 message (copied)."""
+    if isinstance(solid, Solid):
+        return solid.proto
+    if isinstance(solid, geometry3d_pb2.Shape3):
+        copy = geometry3d_pb2.Shape3()
+        copy.CopyFrom(solid)
+        return copy
+    raise TypeError(f"expected a meshd.Solid, got {type(solid).__name__}")
+
+
+def _primitive(kind, name, fill):
+    proto = geometry3d_pb2.Shape3()
+    if name:
+        proto.name = name
+    fill(getattr(proto, kind))
+    return Solid(proto)
+
+
+# ---- primitives -------------------------------------------------------------------------------
+
+def sphere(radius=1.0, center=(0.0, 0.0, 0.0), name=None):
+    """The ball of radius (> 0) about center."""
+    def fill(s):
+        s.center.CopyFrom(_vec3(center, "center"))
+        s.radius = float(radius)
+    return _primitive("sphere", name, fill)
+
+
+def box(min, max, name=None):  # noqa: A002 (the proto's field names)
+    """The axis-aligned box from corner min (x0, y0, z0) to corner max (x1, y1, z1)."""
+    def fill(b):
+        b.min.CopyFrom(_vec3(min, "min"))
+        b.max.CopyFrom(_vec3(max, "max"))
+    return _primitive("box", name, fill)
+
+
+def cylinder(radius, height, base_center=(0.0, 0.0, 0.0), name=None):
+    """The capped cylinder along +z from base_center: radius and height > 0."""
+    def fill(c):
+        c.base_center.CopyFrom(_vec3(base_center, "base_center"))
+        c.radius = float(radius)
+        c.height = float(height)
+    return _primitive("cylinder", name, fill)
+
+
+def cone(bottom_radius, top_radius, height, base_center=(0.0, 0.0, 0.0), name=None):
+    """The cone or frustum along +z from base_center: radii >= 0, not both 0; height > 0."""
+    def fill(c):
+        c.base_center.CopyFrom(_vec3(base_center, "base_center"))
+        c.bottom_radius = float(bottom_radius)
+        c.top_radius = float(top_radius)
+        c.height = float(height)
+    return _primitive("cone", name, fill)
+
+
+def torus(major_radius, minor_radius, center=(0.0, 0.0, 0.0), name=None):
+    """The ring torus about the z axis through center: major_radius > minor_radius > 0."""
+    def fill(t):
+        t.center.CopyFrom(_vec3(center, "center"))
+        t.major_radius = float(major_radius)
+        t.minor_radius = float(minor_radius)
+    return _primitive("torus", name, fill)
+
+
+def half_space(normal, offset=0.0, name=None):
+    """The half-space dot(normal, p) <= offset; cut it off with bounded solids."""
+    def fill(h):
+        h.normal.CopyFrom(_vec3(normal, "normal"))
+        h.offset = float(offset)
+    return _primitive("half_space", name, fill)
+
+
+def extrude(profile, height, name=None):
+    """A plane Shape (meshd.circle(...) and friends) in the xy plane extruded along +z from 0 to
+    height (> 0); its rims and the vertical edges at its corners stay sharp."""
+    def fill(e):
+        e.profile.CopyFrom(as_shape_proto(profile))
+        e.height = float(height)
+    return _primitive("extrusion", name, fill)
+
+
+def revolve(profile, name=None):
+    """A plane Shape revolved about the z axis: its x is the distance from the axis, its y the
+    height. A solid that reaches the axis needs a profile symmetric about it."""
+    def fill(r):
+        r.profile.CopyFrom(as_shape_proto(profile))
+    return _primitive("revolution", name, fill)
+
+
+# ---- operations -------------------------------------------------------------------------------
+
+def _nary(kind, solids):
+    """A union or intersection node; an unnamed operand of the same kind is merged in."""
+    if not solids:
+        raise ValueError(f"{kind} of no solids")
+    proto = geometry3d_pb2.Shape3()
+    children = getattr(proto, kind).shapes
+    for solid in solids:
+        child = as_solid_proto(solid)
+        if child.WhichOneof("kind") == kind and not child.name:
+            children.extend(getattr(child, kind).shapes)
+        else:
+            children.append(child)
+    return Solid(proto)
+
+
+def union(*solids):
+    """The union of one or more solids (also `a | b`)."""
+    return _nary("union", solids)
+
+
+def intersection(*solids):
+    """The intersection of one or more solids (also `a & b`)."""
+    return _nary("intersection", solids)
+
+
+def difference(base, *subtract):
+    """base minus every solid of subtract (also `a - b`)."""
+    base_proto = as_solid_proto(base)
+    proto = geometry3d_pb2.Shape3()
+    if base_proto.WhichOneof("kind") == "difference" and not base_proto.name:
+        proto.difference.CopyFrom(base_proto.difference)
+    else:
+        proto.difference.base.CopyFrom(base_proto)
+    for solid in subtract:
+        proto.difference.subtract.append(as_solid_proto(solid))
+    return Solid(proto)
