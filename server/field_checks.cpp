@@ -109,4 +109,16 @@ int in_range(uint32_t v, uint32_t lo, uint32_t hi, const std::string& field) {
   return static_cast<int>(v);
 }
 
+void TreeBudget::enter(const std::string& path, int depth, const std::string& name) {
+  if (depth > max_depth_) {
+    throw_invalid(path, "the tree is deeper than the limit of " + std::to_string(max_depth_) +
+                            " levels (a lone primitive is 1 level)");
+  }
+  if (++nodes_ > max_nodes_) {
+    throw_invalid(root_, "the tree has more than the limit of " + std::to_string(max_nodes_) +
+                             " shape nodes");
+  }
+  if (!name.empty()) check_name(name, path + ".name");
+}
+
 }  // namespace meshd

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "core/common/vec2.h"
 #include "meshd/v1/geometry.pb.h"
@@ -41,5 +42,22 @@ double at_least_h_min(double h_max, double h_min, const std::string& field);
 // Checks lo < v <= hi (lo_open) or lo <= v <= hi; NaN fails either.
 double in_range(double v, double lo, bool lo_open, double hi, const std::string& field);
 int in_range(uint32_t v, uint32_t lo, uint32_t hi, const std::string& field);
+
+// What one shape tree (plane or solid) may hold: it counts the nodes a converter enters.
+class TreeBudget {
+ public:
+  TreeBudget(std::string root, int max_depth, int max_nodes)
+      : root_(std::move(root)), max_depth_(max_depth), max_nodes_(max_nodes) {}
+  const std::string& root() const { return root_; }
+  // Enters the node at `path`, `depth` levels down (the root is 1), named `name` (may be
+  // empty): Error(kInvalidArgument) naming the path past the depth, the root past the count,
+  // or the name's field for a bad name.
+  void enter(const std::string& path, int depth, const std::string& name);
+
+ private:
+  std::string root_;
+  int max_depth_, max_nodes_;
+  int nodes_ = 0;
+};
 
 }  // namespace meshd

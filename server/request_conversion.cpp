@@ -40,23 +40,14 @@ void check_min_below_max(Vec2 min, Vec2 max, const std::string& field) {
 class ShapeConverter {
  public:
   ShapeConverter(const ConversionLimits& limits, std::string root)
-      : limits_(limits), root_(std::move(root)) {}
+      : limits_(limits), budget_(std::move(root), limits.max_tree_depth, limits.max_tree_nodes) {}
 
-  Shape convert(const v1::Shape& shape) { return convert(shape, root_, 1, ""); }
+  Shape convert(const v1::Shape& shape) { return convert(shape, budget_.root(), 1, ""); }
 
  private:
   Shape convert(const v1::Shape& in, const std::string& path, int depth,
                 const std::string& inherited_name) {
-    if (depth > limits_.max_tree_depth) {
-      throw_invalid(path, "the tree is deeper than the limit of " +
-                              std::to_string(limits_.max_tree_depth) +
-                              " levels (a lone primitive is 1 level)");
-    }
-    if (++nodes_ > limits_.max_tree_nodes) {
-      throw_invalid(root_, "the tree has more than the limit of " +
-                               std::to_string(limits_.max_tree_nodes) + " shape nodes");
-    }
-    if (!in.name().empty()) check_name(in.name(), path + ".name");
+    budget_.enter(path, depth, in.name());
 
     Shape out;
     out.path = path;
@@ -190,8 +181,7 @@ class ShapeConverter {
   }
 
   const ConversionLimits& limits_;
-  const std::string root_;
-  int nodes_ = 0;
+  TreeBudget budget_;
   int64_t grid_samples_ = 0;
 };
 

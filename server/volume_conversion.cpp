@@ -26,23 +26,14 @@ Vec3 to_vec3(const v1::Vec3& v, const std::string& field) {
 class Shape3Converter {
  public:
   Shape3Converter(const ConversionLimits& limits, std::string root)
-      : limits_(limits), root_(std::move(root)) {}
+      : limits_(limits), budget_(std::move(root), limits.max_tree_depth, limits.max_tree3_nodes) {}
 
-  Shape3 convert(const v1::Shape3& shape) { return convert(shape, root_, 1, ""); }
+  Shape3 convert(const v1::Shape3& shape) { return convert(shape, budget_.root(), 1, ""); }
 
  private:
   Shape3 convert(const v1::Shape3& in, const std::string& path, int depth,
                  const std::string& inherited_name) {
-    if (depth > limits_.max_tree_depth) {
-      throw_invalid(path, "the tree is deeper than the limit of " +
-                              std::to_string(limits_.max_tree_depth) +
-                              " levels (a lone primitive is 1 level)");
-    }
-    if (++nodes_ > limits_.max_tree3_nodes) {
-      throw_invalid(root_, "the tree has more than the limit of " +
-                               std::to_string(limits_.max_tree3_nodes) + " shape nodes");
-    }
-    if (!in.name().empty()) check_name(in.name(), path + ".name");
+    budget_.enter(path, depth, in.name());
 
     Shape3 out;
     out.path = path;
@@ -200,8 +191,7 @@ class Shape3Converter {
   }
 
   const ConversionLimits& limits_;
-  const std::string root_;
-  int nodes_ = 0;
+  TreeBudget budget_;
 };
 
 // ---------------------------------------------------------------------------------------------

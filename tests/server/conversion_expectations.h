@@ -1,5 +1,6 @@
-// What the conversion tests expect of a bad request: to_problem fails with a code, on a field,
-// with a message that states the allowed range.
+// What the conversion tests expect of a bad request: to_job_spec (the plane and the volume
+// conversion, then the options) fails with a code, on a field, with a message that states the
+// allowed range.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -16,7 +17,7 @@ namespace meshd::testing {
 inline void expect_error(const v1::MeshRequest& request, ErrorCode code, const std::string& field,
                          const std::string& message, const ConversionLimits& limits = {}) {
   try {
-    to_problem(request, limits);
+    to_job_spec(request, limits);
     ADD_FAILURE() << "no error; expected " << field << ": " << message;
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), code) << e.what();

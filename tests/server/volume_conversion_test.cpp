@@ -8,6 +8,7 @@
 
 #include "core/common/error.h"
 #include "server/request_conversion.h"
+#include "tests/server/conversion_expectations.h"
 
 namespace meshd::testing {
 namespace {
@@ -18,18 +19,9 @@ v1::MeshRequest parse(const std::string& text) {
   return request;
 }
 
-// to_job_spec fails with `code` on `field`, its message containing `message`.
 void expect_error(const std::string& text, ErrorCode code, const std::string& field,
-                  const std::string& message, const ConversionLimits& limits = {}) {
-  try {
-    to_job_spec(parse(text), limits);
-    ADD_FAILURE() << "no error; expected " << field << ": " << message;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(e.detail().find(message), std::string::npos)
-        << "message: " << e.detail() << "\nexpected to contain: " << message;
-  }
+                  const std::string& message) {
+  testing::expect_error(parse(text), code, field, message);
 }
 
 void expect_invalid(const std::string& text, const std::string& field, const std::string& message) {
