@@ -13,8 +13,6 @@ namespace {
 
 // Nodes closer than this (times h0) are one node (Topology3::coincident).
 constexpr double kCoincidentRelative = 0.01;
-// The finished surface's nodes lie on the boundary within this many h0 (issue 16's validity).
-constexpr double kOnBoundaryRelative = 1e-3;
 
 // The tetrahedra's points, the used fixed ones first, the others in first use order,
 // renumbered; points no kept tetrahedron uses go: free ones outside or cut off by the centroid
@@ -75,10 +73,9 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
 
   Relaxed3 stats;
   // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident).
-  const auto triangulate = [&](Nodes3& n, Relaxed3& counts, double pit_depth = 0.0) {
+  const auto triangulate = [&](Nodes3& n, Relaxed3& counts) {
     for (;;) {
-      Topology3 t =
-          triangulate3d(domain, n.points, n.fixed, geps, kCoincidentRelative * h0, pool, pit_depth);
+      Topology3 t = triangulate3d(domain, n.points, n.fixed, geps, kCoincidentRelative * h0, pool);
       n.at_triangulation = n.points;
       if (t.coincident.empty()) return t;
       remove_nodes3d(n, t.coincident);
@@ -126,8 +123,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   }
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
-  // Its surface keeps no node more than kOnBoundaryRelative h0 inside (the filled pits).
-  topology = triangulate(nodes, stats, kOnBoundaryRelative * h0);
+  topology = triangulate(nodes, stats);
   Relaxed3 out = compact(std::move(nodes.points), std::move(topology.tets), nodes.fixed);
   out.iterations = stats.iterations;
   out.retriangulations = stats.retriangulations + 1;

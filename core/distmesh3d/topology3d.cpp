@@ -8,71 +8,11 @@ namespace meshd {
 namespace {
 
 constexpr size_t kChunk = 4096;
-using Face = std::array<int32_t, 3>;
-
-Face sorted_face(const std::array<int32_t, 4>& t, int skip) {
-  Face f{};
-  int k = 0;
-  for (int i = 0; i < 4; ++i)
-    if (i != skip) f[k++] = t[i];
-  std::sort(f.begin(), f.end());
-  return f;
-}
-
-// The faces used by one tetrahedron of `tets` (the surface of their union), sorted.
-std::vector<Face> surface_faces(const std::vector<std::array<int32_t, 4>>& tets) {
-  std::vector<Face> faces;
-  faces.reserve(4 * tets.size());
-  for (const auto& t : tets)
-    for (int i = 0; i < 4; ++i) faces.push_back(sorted_face(t, i));
-  std::sort(faces.begin(), faces.end());
-  std::vector<Face> once;
-  for (size_t i = 0; i < faces.size();) {
-    size_t j = i;
-    while (j < faces.size() && faces[j] == faces[i]) ++j;
-    if (j - i == 1) once.push_back(faces[i]);
-    i = j;
-  }
-  return once;
-}
-
-// Gives back to `kept` the tetrahedra of `candidates` (dropped by the centroid filter, their
-// centroid inside) that lie on the surface at a node deeper than `below` inside the domain:
-// the filter drops a tetrahedron with three nodes on the boundary and one a little inside,
-// which leaves a pit in the surface whose floor is that node. A few passes, as a tetrahedron
-// given back may expose the next.
-void fill_pits(const Domain3& domain, const std::vector<Vec3>& points,
-               const std::vector<std::array<int32_t, 4>>& candidates, double below,
-               std::vector<std::array<int32_t, 4>>& kept) {
-  std::vector<char> taken(candidates.size(), 0);
-  for (int pass = 0; pass < 4; ++pass) {
-    const std::vector<Face> surface = surface_faces(kept);
-    std::vector<char> deep(points.size(), 0);
-    bool any = false;
-    for (const Face& f : surface)
-      for (int32_t v : f)
-        if (!deep[v] && domain.distance(points[v]) < -below) deep[v] = any = true;
-    if (!any) return;
-    size_t added = 0;
-    for (size_t c = 0; c < candidates.size(); ++c) {
-      const auto& t = candidates[c];
-      if (taken[c] || !(deep[t[0]] || deep[t[1]] || deep[t[2]] || deep[t[3]])) continue;
-      for (int i = 0; i < 4; ++i) {
-        if (!std::binary_search(surface.begin(), surface.end(), sorted_face(t, i))) continue;
-        kept.push_back(t);
-        taken[c] = 1;
-        ++added;
-        break;
-      }
-    }
-    if (added == 0) return;
-  }
-}
 
 }  // namespace
 
 Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
-                        double depth, double coincidence, ThreadPool* pool, double pit_depth) {
+                        double depth, double coincidence, ThreadPool* pool) {
   const std::vector<std::array<int32_t, 4>> all = delaunay_tetrahedralize(points);
   Topology3 topology;
   topology.tets = gather_chunks<std::array<int32_t, 4>>(
@@ -83,15 +23,6 @@ Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, 
           if (domain.distance(centroid) < -depth) kept.push_back(v);
         }
       });
-  if (pit_depth > 0.0) {
-    std::vector<std::array<int32_t, 4>> inside;  // dropped, yet with their centroid inside
-    for (const auto& v : all) {
-      const double d =
-          domain.distance(0.25 * (points[v[0]] + points[v[1]] + points[v[2]] + points[v[3]]));
-      if (d < 0.0 && d >= -depth) inside.push_back(v);
-    }
-    fill_pits(domain, points, inside, pit_depth, topology.tets);
-  }
   build_bars3d(topology, static_cast<int64_t>(points.size()));
   // Coincident nodes share an edge of the whole triangulation, kept or not.
   auto& close = topology.coincident;

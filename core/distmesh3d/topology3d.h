@@ -31,13 +31,8 @@ struct Topology3 {
 // Tetrahedralizes `points` (#N by 3, the first `fixed` fixed) and keeps the tetrahedra whose
 // centroid lies deeper than `depth` (> 0, the request's length unit) inside `domain`; lists the
 // free nodes within `coincidence` (the same unit) of another node (of two free ones, the higher).
-// pit_depth > 0 (the final triangulation): also keeps the dropped tetrahedra with their centroid
-// inside that fill a pit of the surface, one whose floor is a node deeper than pit_depth inside
-// (the filter drops a tetrahedron with three nodes on the boundary and one just inside it). At a
-// concave part of the boundary curved on the scale of h0 such a tetrahedron's centroid may lie
-// outside, and the pit stays.
 Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
-                        double depth, double coincidence, ThreadPool* pool, double pit_depth = 0.0);
+                        double depth, double coincidence, ThreadPool* pool);
 
 // The unique bars of `tets` and the CSR of each of the `nodes` nodes' bars, as Topology3 holds
 // them.

@@ -2,11 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "core/common/error.h"
-#include "core/distmesh3d/assemble_mesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/mesh3d/tet_quality.h"
 #include "tests/core/geometry3d/shape3d_builders.h"
@@ -71,27 +69,6 @@ TEST(Distmesh3d, ABoxStaysABox) {
   const TetQualityStats q = summarize_tet_quality(r.points, r.tets);
   EXPECT_GE(q.q_min, 0.2);
   EXPECT_GE(q.min_dihedral_deg, 10.0);
-}
-
-// The surface lies on the boundary: no pit where the centroid filter dropped a tetrahedron with
-// three nodes on the boundary and one just inside (triangulate3d's pit_depth).
-TEST(Distmesh3d, TheSurfaceNodesLieOnTheBoundary) {
-  const double h0 = 0.1;  // the hole 5 edges across: coarser, pits at its surface stay
-  GeometryDomain3 box(
-      csg3(CsgOp::kDifference, {cuboid({-1, -1, -1}, {1, 1, 1}), sphere({0, 0, 0}, 0.5)}), h0);
-  const TetMesh mesh =
-      assemble_mesh3d(box.domain(), distmesh3d(box.domain(), h0, Params3{}, nullptr));
-  int off = 0;
-  double farthest = 0.0;
-  for (const auto& f : mesh.boundary_faces)
-    for (int32_t v : f) {
-      const double d = std::fabs(box.domain().distance(mesh.points[v]));
-      off += d > 1e-3 * h0;
-      farthest = std::max(farthest, d);
-    }
-  // A few nodes just off it may stay where no dropped tetrahedron fills their pit.
-  EXPECT_LE(farthest, 0.05 * h0);
-  EXPECT_LE(off, 6) << "face corners off the boundary";
 }
 
 TEST(Distmesh3d, TheSameMeshOnAnyNumberOfThreads) {
