@@ -107,7 +107,8 @@ for step in "${steps[@]}"; do
       $run meshd > "$out/meshd.log" 2>&1 &
       meshd_pid=$!
       for _ in $(seq 100); do $run meshctl health --deadline 1 > /dev/null 2>&1 && break; sleep 0.2; done
-      for request in examples/*.textproto; do
+      # Volumes too: on a GPU node they go to the CPU worker.
+      for request in examples/*.textproto examples/volumes/*.textproto; do
         $run meshctl generate "$request" -o "$out/$(basename "$request" .textproto).msh" 2>&1 |
           tee -a "$out/meshctl.log" | grep -E "done on|q_min"
       done

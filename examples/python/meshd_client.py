@@ -5,9 +5,9 @@
 
 Reads a text-format meshd.v1.MeshRequest (examples/*.textproto), calls MeshService.Generate
 with a deadline, prints progress to stderr, joins the result chunks, checks their SHA-256
-against the `done` event, and writes the triangles with meshio; the format follows OUT's
-extension (.vtu, .msh, .xdmf, ...). On an error it prints the server's status and message
-(which names the field of a bad request) and exits 1.
+against the `done` event, and writes the triangles (a volume request's tetrahedra) with meshio;
+the format follows OUT's extension (.vtu, .msh, .xdmf, ...). On an error it prints the server's
+status and message (which names the field of a bad request) and exits 1.
 
 Needs grpcio, protobuf and meshio (Debian: python3-grpcio python3-protobuf python3-meshio; pip:
 grpcio protobuf meshio) and the Python stubs of proto/meshd/v1, from either
@@ -107,16 +107,25 @@ def main():
         return 1
     mesh = mesh_pb2.MeshData.FromString(payload)
 
-    # MeshData is flat: points #N by 2, triangles #M by 3. meshio wants 3D points for most
-    # formats (VTU among them), so z = 0.
-    points = np.zeros((len(mesh.points) // 2, 3))
-    points[:, :2] = np.asarray(mesh.points).reshape(-1, 2)
-    cells = np.asarray(mesh.triangles, dtype=np.int64).reshape(-1, 3)
-    meshio.Mesh(points, [("triangle", cells)]).write(args.output)
-
     q = done.quality
-    print(f"nodes {done.nodes} triangles {done.triangles} iterations {done.stats.iterations} "
-          f"q_min {q.q_min:.3f} q_mean {q.q_mean:.4f} on {done.device}")
+    if mesh.dimension == 3:
+        # A volume (request field `volume`): points #N by 3, tetrahedra #M by 4.
+        points = np.asarray(mesh.points).reshape(-1, 3)
+        cells = np.asarray(mesh.tetrahedra, dtype=np.int64).reshape(-1, 4)
+        meshio.Mesh(points, [("tetra", cells)]).write(args.output)
+        print(f"nodes {done.nodes} tetrahedra {done.tetrahedra} iterations "
+              f"{done.stats.iterations} q_min {q.q_min:.3f} min dihedral "
+              f"{q.min_dihedral_deg:.1f} deg on {done.device}")
+    else:
+        # MeshData is flat: points #N by 2, triangles #M by 3. meshio wants 3D points for most
+        # formats (VTU among them), so z = 0.
+        points = np.zeros((len(mesh.points) // 2, 3))
+        points[:, :2] = np.asarray(mesh.points).reshape(-1, 2)
+        cells = np.asarray(mesh.triangles, dtype=np.int64).reshape(-1, 3)
+        meshio.Mesh(points, [("triangle", cells)]).write(args.output)
+        print(f"nodes {done.nodes} triangles {done.triangles} iterations "
+              f"{done.stats.iterations} q_min {q.q_min:.3f} q_mean {q.q_mean:.4f} on "
+              f"{done.device}")
     print(f"wrote {args.output}")
     return 0
 

@@ -6,14 +6,18 @@
                            progress=True)
     mesh.points, mesh.triangles          # #N by 2 float64, #M by 3 int32
     mesh.to_meshio().write("ring.vtu")
+    part = meshd.box((-1, -1, -1), (1, 1, 1)) - meshd.sphere(0.5)
+    tets = client.generate(meshd.request(part, h0=0.2))   # a TetMesh: points #N by 3 float64,
+    tets.tetrahedra, tets.boundary_faces                 # #M by 4 and #F by 3 int32
 
 Geometry: circle, rectangle, polygon, ellipse, half_plane, distance_grid (a numpy array of
 signed distances); | & - and union, intersection, difference; .translate(), .rotate(),
 .scale(), .named(). Volumes (tetrahedra, a TetMesh): sphere, box, cylinder, cone, torus,
-half_space, extrude(shape, height), revolve(shape), combined and moved the same way. Size: uniform, graded, grid, feature. Requests: request(). Clients: Client
-and aio.Client. Events: Queued, Started, Progress, Snapshot, Done. Errors: MeshdError and its
-subclasses. The meshd.v1 messages and stubs are generated from the repository's proto/ when the
-package is built.
+half_space, extrude(shape, height), revolve(shape), a Solid combined and moved the same way.
+Size: uniform, graded (about a Shape, or a Solid for a volume), grid, feature. Requests:
+request(). Results: Mesh, TetMesh, Quality, RunStats. Clients: Client and aio.Client. Events:
+Queued, Started, Progress, Snapshot, Done. Errors: MeshdError and its subclasses. The meshd.v1
+messages and stubs are generated from the repository's proto/ when the package is built.
 """
 
 from meshd import aio

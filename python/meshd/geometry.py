@@ -182,40 +182,63 @@ def distance_grid(values, spacing=1.0, origin=(0.0, 0.0), name=None):
 
 # ---- operations -------------------------------------------------------------------------------
 
-def _nary(kind, shapes):
-    """A union or intersection node of shapes; an unnamed operand of the same kind is merged in
-    (a named one keeps its node, since its name applies to its own primitives only)."""
-    if not shapes:
+def nary_node(message_type, kind, operands):
+    """A union or intersection node (a new message_type: Shape or Shape3) of the operand protos;
+    an unnamed operand of the same kind is merged in (a named one keeps its node, since its name
+    applies to its own primitives only)."""
+    if not operands:
         raise ValueError(f"{kind} of no shapes")
-    proto = geometry_pb2.Shape()
+    proto = message_type()
     children = getattr(proto, kind).shapes
-    for shape in shapes:
-        child = as_shape_proto(shape)
+    for child in operands:
         if child.WhichOneof("kind") == kind and not child.name:
             children.extend(getattr(child, kind).shapes)
         else:
             children.append(child)
-    return Shape(proto)
+    return proto
+
+
+def difference_node(message_type, base, subtract):
+    """base minus every proto of subtract, as a new message_type; an unnamed difference as base
+    is extended rather than nested."""
+    proto = message_type()
+    if base.WhichOneof("kind") == "difference" and not base.name:
+        proto.difference.CopyFrom(base.difference)
+    else:
+        proto.difference.base.CopyFrom(base)
+    for child in subtract:
+        proto.difference.subtract.append(child)
+    return proto
+
+
+def _nary(kind, shapes):
+    return Shape(nary_node(geometry_pb2.Shape, kind, [as_shape_proto(s) for s in shapes]))
+
+
+def _solids_of(first):
+    """meshd.solid when the first operand is a solid, so that meshd.union and friends combine
+    solids as they do shapes; else None."""
+    from meshd import solid  # imports this module: not at the top
+    return solid if isinstance(first, (solid.Solid, solid.geometry3d_pb2.Shape3)) else None
 
 
 def union(*shapes):
-    """The union of one or more shapes (also `a | b`)."""
-    return _nary("union", shapes)
+    """The union of one or more shapes, or of solids (also `a | b`)."""
+    solids = _solids_of(shapes[0]) if shapes else None
+    return solids.union(*shapes) if solids else _nary("union", shapes)
 
 
 def intersection(*shapes):
-    """The intersection of one or more shapes (also `a & b`)."""
-    return _nary("intersection", shapes)
+    """The intersection of one or more shapes, or of solids (also `a & b`)."""
+    solids = _solids_of(shapes[0]) if shapes else None
+    return solids.intersection(*shapes) if solids else _nary("intersection", shapes)
 
 
 def difference(base, *subtract):
-    """base minus every shape of subtract (also `a - b`; `a - b - c` is one node)."""
-    base_proto = as_shape_proto(base)
-    proto = geometry_pb2.Shape()
-    if base_proto.WhichOneof("kind") == "difference" and not base_proto.name:
-        proto.difference.CopyFrom(base_proto.difference)
-    else:
-        proto.difference.base.CopyFrom(base_proto)
-    for shape in subtract:
-        proto.difference.subtract.append(as_shape_proto(shape))
-    return Shape(proto)
+    """base minus every shape of subtract (also `a - b`; `a - b - c` is one node); base and
+    subtract may be solids instead."""
+    solids = _solids_of(base)
+    if solids:
+        return solids.difference(base, *subtract)
+    return Shape(difference_node(geometry_pb2.Shape, as_shape_proto(base),
+                                 [as_shape_proto(s) for s in subtract]))

@@ -21,6 +21,23 @@ DOMAIN_PHYSICAL_TAG = 1
 DOMAIN_GROUP_NAME = "domain"
 
 
+def _write_meshio(mesh, path, file_format):
+    """meshio's write, with .msh meaning Gmsh's MSH 4.1 in ASCII (meshio would guess ANSYS)."""
+    options = {}
+    if file_format is None and str(path).endswith(".msh"):
+        file_format, options = "gmsh", {"binary": False}
+    mesh.write(path, file_format=file_format, **options)
+
+
+def _job_fields(done, job_id):
+    """The fields a mesh takes from its job's Done event (all empty without one)."""
+    return {"quality": Quality.from_proto(done.quality) if done is not None else None,
+            "stats": RunStats.from_proto(done.stats) if done is not None else None,
+            "job_id": job_id,
+            "backend": BACKEND_NAMES.get(done.backend, "") if done is not None else "",
+            "device": done.device if done is not None else ""}
+
+
 def _from_proto(cls, message):
     return cls(**{f.name: getattr(message, f.name) for f in fields(cls)})
 
@@ -96,11 +113,7 @@ class Mesh:
             boundary_edges=np.array(data.boundary_edges, dtype=np.int32).reshape(-1, 2),
             boundary_tags=np.array(data.boundary_tags, dtype=np.int32),
             boundary_names=list(data.boundary_names),
-            quality=Quality.from_proto(done.quality) if done is not None else None,
-            stats=RunStats.from_proto(done.stats) if done is not None else None,
-            job_id=job_id,
-            backend=BACKEND_NAMES.get(done.backend, "") if done is not None else "",
-            device=done.device if done is not None else "")
+            **_job_fields(done, job_id))
 
     @property
     def boundary_groups(self):
@@ -127,42 +140,26 @@ class Mesh:
     def to_meshio(self):
         """A meshio.Mesh: triangles and boundary lines, with gmsh:physical / gmsh:geometrical
         tags, gmsh:dim_tags and field_data naming the groups (so .msh keeps them), and the
-        triangles' quality as cell data (as meshd's VTU writer has it). Points get z = 0, which
-        most formats need."""
-        import meshio  # optional: pip install meshio, Debian python3-meshio
-
+        triangles' quality as cell data (as meshd's VTU writer has it). The lines come one cell
+        block per boundary group. Points get z = 0, which most formats need."""
         points = np.zeros((len(self.points), 3))
         points[:, :2] = self.points
-        group_tags = self.boundary_tags + DOMAIN_PHYSICAL_TAG + 1
-        domain_tags = np.full(len(self.triangles), DOMAIN_PHYSICAL_TAG, dtype=np.int32)
         # Gmsh entities, which meshio's MSH 4.1 writer takes from the nodes: the surface 1 and
         # one curve per boundary group; a node lies on the curve of an edge it starts, else
         # inside the surface. The writer groups the nodes by entity, so a .msh read back has
         # the same nodes and triangles in another order.
+        group_tags = self.boundary_tags + DOMAIN_PHYSICAL_TAG + 1
         dim_tags = np.tile([2, DOMAIN_PHYSICAL_TAG], (len(self.points), 1))
         dim_tags[self.boundary_edges[:, 0]] = np.column_stack(
             [np.ones_like(group_tags), group_tags])
-        field_data = {DOMAIN_GROUP_NAME: np.array([DOMAIN_PHYSICAL_TAG, 2])}
-        for i, name in enumerate(self.boundary_names):
-            field_data[name] = np.array([i + DOMAIN_PHYSICAL_TAG + 1, 1])
-        return meshio.Mesh(
-            points,
-            [("triangle", self.triangles.astype(np.int64)),
-             ("line", self.boundary_edges.astype(np.int64))],
-            cell_data={"gmsh:physical": [domain_tags, group_tags],
-                       "gmsh:geometrical": [domain_tags, group_tags],
-                       "quality": [self.triangle_quality(),
-                                   np.full(len(self.boundary_edges), np.nan)]},
-            point_data={"gmsh:dim_tags": dim_tags},
-            field_data=field_data)
+        return _meshio_mesh(points, ("triangle", self.triangles, self.triangle_quality()),
+                            ("line", self.boundary_edges, self.boundary_tags),
+                            self.boundary_names, 2, dim_tags)
 
     def write(self, path, file_format=None):
         """Writes the mesh with meshio; the format follows the extension (.vtu, .xdmf, ...),
         .msh meaning Gmsh's MSH 4.1 (meshio would guess ANSYS)."""
-        options = {}
-        if file_format is None and str(path).endswith(".msh"):
-            file_format, options = "gmsh", {"binary": False}
-        self.to_meshio().write(path, file_format=file_format, **options)
+        _write_meshio(self.to_meshio(), path, file_format)
 
     def __repr__(self):
         q = f", q_min {self.quality.q_min:.3f}" if self.quality else ""
@@ -202,11 +199,7 @@ class TetMesh:
             boundary_faces=np.array(data.boundary_faces, dtype=np.int32).reshape(-1, 3),
             boundary_tags=np.array(data.boundary_tags, dtype=np.int32),
             boundary_names=list(data.boundary_names),
-            quality=Quality.from_proto(done.quality) if done is not None else None,
-            stats=RunStats.from_proto(done.stats) if done is not None else None,
-            job_id=job_id,
-            backend=BACKEND_NAMES.get(done.backend, "") if done is not None else "",
-            device=done.device if done is not None else "")
+            **_job_fields(done, job_id))
 
     @property
     def boundary_groups(self):
@@ -220,40 +213,75 @@ class TetMesh:
         return np.einsum("ij,ij->i", p[:, 1] - p[:, 0],
                          np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) / 6.0
 
+    def tetrahedron_quality(self):
+        """#M radius ratios 3 r_in / R_circ (1 regular, 0 flat, negative inverted), as the
+        server's Quality counts them: q = 6 (6V) |6V| / (2S |C|), S the faces' area and
+        C = u^2 (v x w) + v^2 (w x u) + w^2 (u x v) for the edges u, v, w from the first node."""
+        p = self.points[self.tetrahedra]
+        u, v, w = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0], p[:, 3] - p[:, 0]
+        vw, wu, uv = np.cross(v, w), np.cross(w, u), np.cross(u, v)
+        six_volume = np.einsum("ij,ij->i", u, vw)
+        twice_area = (np.linalg.norm(vw, axis=1) + np.linalg.norm(wu, axis=1)
+                      + np.linalg.norm(uv, axis=1)
+                      + np.linalg.norm(np.cross(v - u, w - u), axis=1))
+        circum = ((u * u).sum(1)[:, None] * vw + (v * v).sum(1)[:, None] * wu
+                  + (w * w).sum(1)[:, None] * uv)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = (6.0 * six_volume * np.abs(six_volume)
+                 / (twice_area * np.linalg.norm(circum, axis=1)))
+        return np.nan_to_num(q)
+
     def to_meshio(self):
         """A meshio.Mesh: tetrahedra and boundary triangles with gmsh:physical /
-        gmsh:geometrical tags and field_data naming the groups (so .msh keeps them)."""
-        import meshio  # optional: pip install meshio, Debian python3-meshio
-
+        gmsh:geometrical tags, gmsh:dim_tags and field_data naming the groups (so .msh keeps
+        them), and the tetrahedra's quality as cell data (NaN on the faces), as Mesh.to_meshio
+        and meshd's VTU writer have them. The triangles come one cell block per group."""
+        # Gmsh entities, as in Mesh.to_meshio: the volume 1 and one surface per boundary group;
+        # a node of a boundary face lies on that face's surface, any other inside the volume.
         group_tags = self.boundary_tags + DOMAIN_PHYSICAL_TAG + 1
-        domain_tags = np.full(len(self.tetrahedra), DOMAIN_PHYSICAL_TAG, dtype=np.int32)
         dim_tags = np.tile([3, DOMAIN_PHYSICAL_TAG], (len(self.points), 1))
-        dim_tags[self.boundary_faces[:, 0]] = np.column_stack(
-            [np.full_like(group_tags, 2), group_tags])
-        field_data = {DOMAIN_GROUP_NAME: np.array([DOMAIN_PHYSICAL_TAG, 3])}
-        for i, name in enumerate(self.boundary_names):
-            field_data[name] = np.array([i + DOMAIN_PHYSICAL_TAG + 1, 2])
-        return meshio.Mesh(
-            self.points,
-            [("tetra", self.tetrahedra.astype(np.int64)),
-             ("triangle", self.boundary_faces.astype(np.int64))],
-            cell_data={"gmsh:physical": [domain_tags, group_tags],
-                       "gmsh:geometrical": [domain_tags, group_tags]},
-            point_data={"gmsh:dim_tags": dim_tags},
-            field_data=field_data)
+        dim_tags[self.boundary_faces.ravel()] = np.repeat(
+            np.column_stack([np.full_like(group_tags, 2), group_tags]), 3, axis=0)
+        return _meshio_mesh(self.points, ("tetra", self.tetrahedra, self.tetrahedron_quality()),
+                            ("triangle", self.boundary_faces, self.boundary_tags),
+                            self.boundary_names, 3, dim_tags)
 
     def write(self, path, file_format=None):
-        """Writes the mesh with meshio, as Mesh.write does."""
-        options = {}
-        if file_format is None and str(path).endswith(".msh"):
-            file_format, options = "gmsh", {"binary": False}
-        self.to_meshio().write(path, file_format=file_format, **options)
+        """Writes the mesh with meshio, as Mesh.write does (.msh: Gmsh's MSH 4.1)."""
+        _write_meshio(self.to_meshio(), path, file_format)
 
     def __repr__(self):
         q = f", q_min {self.quality.q_min:.3f}" if self.quality else ""
         return (f"meshd.TetMesh({len(self.points)} nodes, {len(self.tetrahedra)} tetrahedra, "
                 f"{len(self.boundary_faces)} boundary faces in {len(self.boundary_names)} "
                 f"groups{q})")
+
+
+def _meshio_mesh(points, domain, boundary, names, dim, dim_tags):
+    """The meshio.Mesh of to_meshio: domain = (cell type, cells, quality) of dimension dim,
+    boundary = (cell type, cells, group of each) of dimension dim - 1. The boundary cells come
+    one block per group, since meshio's MSH writer makes each block one Gmsh entity and takes
+    its tags from the block's first cell; a block per group keeps every group's physical tag."""
+    import meshio  # optional: pip install meshio, Debian python3-meshio
+
+    domain_type, domain_cells, quality = domain
+    boundary_type, boundary_cells, boundary_tags = boundary
+    blocks = [(domain_type, domain_cells.astype(np.int64))]
+    tags = [np.full(len(domain_cells), DOMAIN_PHYSICAL_TAG, dtype=np.int32)]
+    qualities = [quality]
+    field_data = {DOMAIN_GROUP_NAME: np.array([DOMAIN_PHYSICAL_TAG, dim])}
+    for i, name in enumerate(names):
+        tag = i + DOMAIN_PHYSICAL_TAG + 1
+        field_data[name] = np.array([tag, dim - 1])
+        cells = boundary_cells[boundary_tags == i]
+        if len(cells):
+            blocks.append((boundary_type, cells.astype(np.int64)))
+            tags.append(np.full(len(cells), tag, dtype=np.int32))
+            qualities.append(np.full(len(cells), np.nan))
+    return meshio.Mesh(points, blocks,
+                       cell_data={"gmsh:physical": tags, "gmsh:geometrical": tags,
+                                  "quality": qualities},
+                       point_data={"gmsh:dim_tags": dim_tags}, field_data=field_data)
 
 
 def mesh_from_proto(data, done=None, job_id=""):

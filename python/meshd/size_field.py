@@ -101,6 +101,9 @@ def size_field(size):
     for term in terms:
         if isinstance(term, (int, float)):
             term = uniform(term)
+        if isinstance(term, (geometry3d_pb2.SizeTerm3, geometry3d_pb2.SizeField3)):
+            raise TypeError("size of a plane shape: meshd.graded(solid, ...) grades a volume; "
+                            "grade about a plane Shape, or mesh a Solid")
         if not isinstance(term, geometry_pb2.SizeTerm):
             raise TypeError(f"size: expected meshd.uniform(...), meshd.graded(...), "
                             f"meshd.grid(...) or meshd.feature(...), got {type(term).__name__}")

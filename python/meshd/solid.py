@@ -11,7 +11,7 @@ meshd.v1.Shape3 message the server reads in a volume request.
 Lengths are in the request's length unit, angles in degrees. Solids are immutable.
 """
 
-from meshd.geometry import as_shape_proto
+from meshd.geometry import as_shape_proto, difference_node, nary_node
 from meshd.v1 import geometry3d_pb2
 
 
@@ -185,18 +185,7 @@ def revolve(profile, name=None):
 # ---- operations -------------------------------------------------------------------------------
 
 def _nary(kind, solids):
-    """A union or intersection node; an unnamed operand of the same kind is merged in."""
-    if not solids:
-        raise ValueError(f"{kind} of no solids")
-    proto = geometry3d_pb2.Shape3()
-    children = getattr(proto, kind).shapes
-    for solid in solids:
-        child = as_solid_proto(solid)
-        if child.WhichOneof("kind") == kind and not child.name:
-            children.extend(getattr(child, kind).shapes)
-        else:
-            children.append(child)
-    return Solid(proto)
+    return Solid(nary_node(geometry3d_pb2.Shape3, kind, [as_solid_proto(s) for s in solids]))
 
 
 def union(*solids):
@@ -211,12 +200,5 @@ def intersection(*solids):
 
 def difference(base, *subtract):
     """base minus every solid of subtract (also `a - b`)."""
-    base_proto = as_solid_proto(base)
-    proto = geometry3d_pb2.Shape3()
-    if base_proto.WhichOneof("kind") == "difference" and not base_proto.name:
-        proto.difference.CopyFrom(base_proto.difference)
-    else:
-        proto.difference.base.CopyFrom(base_proto)
-    for solid in subtract:
-        proto.difference.subtract.append(as_solid_proto(solid))
-    return Solid(proto)
+    return Solid(difference_node(geometry3d_pb2.Shape3, as_solid_proto(base),
+                                 [as_solid_proto(s) for s in subtract]))

@@ -5,8 +5,8 @@
 
 Starts `BIN --listen 127.0.0.1:0 --backend cpu`, runs the client on the request writing a .vtu,
 reads the file back with meshio and compares its node and triangle counts with the summary the
-client printed; then checks that a bad request makes the client exit non-zero with the server's
-message and write nothing.
+client printed, and the same for a small volume's tetrahedra; then checks that a bad request makes
+the client exit non-zero with the server's message and write nothing.
 
 Exit status: 0 when all pass, 1 on a failure, 77 (ctest's skip) when grpcio or meshio is missing.
 """
@@ -50,6 +50,29 @@ def test_g1_to_vtu(args, tmp):
     print(f"  {nodes} nodes, {triangles} triangles read back from the .vtu")
 
 
+def test_volume_to_vtu(args, tmp):
+    """A volume request (a cube minus a ball, about 800 nodes) comes back as tetrahedra."""
+    import meshio
+    request = os.path.join(tmp, "part.textproto")
+    with open(request, "w") as f:
+        f.write("volume { geometry { difference {\n"
+                "  base { box { min { x: -1 y: -1 z: -1 } max { x: 1 y: 1 z: 1 } } }\n"
+                "  subtract { sphere { radius: 0.5 } } } } }\nh0: 0.25\n")
+    out = os.path.join(tmp, "part.vtu")
+    r = run_client(args, request, out)
+    assert r.returncode == 0, f"exit {r.returncode}\n{r.stderr}"
+    m = re.search(r"^nodes (\d+) tetrahedra (\d+) ", r.stdout, re.M)
+    assert m, f"no summary in stdout:\n{r.stdout}"
+    nodes, tetrahedra = int(m.group(1)), int(m.group(2))
+    mesh = meshio.read(out)
+    read_tetrahedra = sum(len(c.data) for c in mesh.cells if c.type == "tetra")
+    assert (len(mesh.points), read_tetrahedra) == (nodes, tetrahedra), \
+        f"{out} has {len(mesh.points)} nodes, {read_tetrahedra} tetrahedra; the summary says " \
+        f"{nodes}, {tetrahedra}"
+    assert 500 < nodes < 2000, f"{nodes} nodes for the cube minus a ball at h0 0.25"
+    print(f"  {nodes} nodes, {tetrahedra} tetrahedra read back from the .vtu")
+
+
 def test_bad_request(args, tmp):
     bad = os.path.join(tmp, "bad.textproto")
     with open(bad, "w") as f:
@@ -77,7 +100,8 @@ def main():
     failures = 0
     with MeshdChild(args.meshd) as meshd, tempfile.TemporaryDirectory() as tmp:
         args.address = meshd.address
-        for test in (test_g1_to_vtu, test_bad_request):
+        tests = (test_g1_to_vtu, test_volume_to_vtu, test_bad_request)
+        for test in tests:
             t = time.monotonic()
             try:
                 test(args, tmp)
@@ -85,7 +109,8 @@ def main():
             except (AssertionError, subprocess.TimeoutExpired) as e:
                 failures += 1
                 print(f"FAIL {test.__name__}: {e}\n  meshd's log:\n  {meshd.log()}")
-    print(f"{failures} of 2 sub-tests failed" if failures else "all 2 sub-tests passed")
+    print(f"{failures} of {len(tests)} sub-tests failed" if failures
+          else f"all {len(tests)} sub-tests passed")
     return 1 if failures else 0
 
 

@@ -195,6 +195,25 @@ def test_event_decoder(examples):
     mesh = decoder.finish().mesh
     assert mesh.points.shape == (3, 2) and mesh.triangles.tolist() == [[0, 1, 2]]
     assert mesh.boundary_groups["a"].tolist() == [[0, 1], [1, 2]] and mesh.areas()[0] == 0.5
+    # A volume's result (dimension 3): one regular tetrahedron, its four faces in two groups.
+    corners = [[1, 1, 1], [-1, -1, 1], [-1, 1, -1], [1, -1, -1]]
+    tet = mesh_pb2.MeshData(points=np.ravel(corners).tolist(), tetrahedra=[0, 1, 2, 3],
+                            boundary_faces=[1, 3, 2, 0, 2, 3, 0, 3, 1, 0, 1, 2],
+                            boundary_tags=[0, 1, 1, 1], boundary_names=["base", "sides"],
+                            dimension=3)
+    decoder = EventDecoder()
+    for e in result_events(tet, 16):
+        decoder.feed(e)
+    mesh = decoder.finish().mesh
+    assert isinstance(mesh, meshd.TetMesh), type(mesh)
+    assert mesh.points.shape == (4, 3) and mesh.points.dtype == np.float64, mesh.points
+    assert mesh.tetrahedra.shape == (1, 4) and mesh.tetrahedra.dtype == np.int32, mesh.tetrahedra
+    assert mesh.boundary_faces.shape == (4, 3) and len(mesh.boundary_groups["sides"]) == 3
+    assert abs(mesh.volumes()[0] - 8 / 3) < 1e-12, mesh.volumes()
+    assert abs(mesh.tetrahedron_quality()[0] - 1) < 1e-12, mesh.tetrahedron_quality()
+    flipped = meshd.TetMesh.from_proto(tet)
+    flipped.tetrahedra[:] = [[1, 0, 2, 3]]
+    assert flipped.volumes()[0] < 0 and flipped.tetrahedron_quality()[0] < 0
     # Out of order, a wrong checksum, no done: each is BadResult.
     events = result_events(data, 10)
     swapped, corrupt = events[1:2] + events[:1] + events[2:], [e.__deepcopy__() for e in events]
@@ -237,6 +256,64 @@ def test_volume_builders(examples):
         raise AssertionError("auto_features accepted with a plane shape")
     except ValueError:
         pass
+    try:
+        meshd.request(meshd.circle(1), h0=0.1, size=meshd.graded(meshd.sphere(0.2), 1, 3, 3))
+        raise AssertionError("a volume's size term accepted with a plane shape")
+    except TypeError as e:
+        assert "volume" in str(e), e
+    try:
+        meshd.sphere(1) | meshd.circle(1)
+        raise AssertionError("a solid united with a plane shape")
+    except TypeError:
+        pass
+
+
+def test_volume_requests(examples):
+    """A ball and a cube minus a ball, field by field, as the server reads them; meshd.union,
+    intersection and difference take solids as the operators do."""
+    ball = meshd.request(meshd.sphere(1, name="sphere"), h0=0.087)
+    expected = read_example(examples, "volumes/ball.textproto")
+    assert not ball.HasField("geometry") and ball.HasField("volume"), ball
+    assert ball.h0 == expected.h0 and ball.volume.geometry.name == "sphere", ball
+    sphere = ball.volume.geometry.sphere
+    assert sphere.radius == expected.volume.geometry.sphere.radius == 1, ball
+    assert (sphere.center.x, sphere.center.y, sphere.center.z) == (0, 0, 0), ball
+    assert not ball.volume.HasField("size") and not ball.volume.HasField("auto_features"), ball
+    assert not ball.HasField("options") and not ball.HasField("params"), ball
+
+    part = meshd.box((-1, -1, -1), (1, 1, 1)).named("box") - meshd.sphere(0.5).named("ball")
+    req = meshd.request(part, h0=0.1, size=meshd.graded(meshd.sphere(0.5), h_min=1, slope=2,
+                                                        h_max=3),
+                        auto_features=True, backend="cpu", dptol=0.002)
+    d = req.volume.geometry.difference
+    assert d.base.name == "box" and d.base.box.max.z == 1 and d.base.box.min.x == -1, d
+    assert len(d.subtract) == 1 and d.subtract[0].name == "ball", d
+    assert d.subtract[0].sphere.radius == 0.5, d
+    (term,) = req.volume.size.terms
+    assert term.distance.shape.sphere.radius == 0.5 and term.distance.slope == 2, term
+    assert (term.distance.h_min, term.distance.h_max) == (1, 3), term
+    assert req.volume.auto_features and req.params.dptol == 0.002, req
+    assert req.options.backend == request_pb2.JobOptions.BACKEND_CPU, req
+    assert not req.HasField("size"), "a volume's size went into the plane's field"
+
+    a, b, c = meshd.sphere(1), meshd.box((0, 0, 0), (1, 1, 1)), meshd.torus(2, 0.5)
+    assert meshd.union(a, b, c).proto == (a | b | c).proto
+    assert meshd.intersection(a, b).proto == (a & b).proto
+    assert meshd.difference(a, b, c).proto == (a - b - c).proto
+    assert isinstance(meshd.union(a, b), meshd.Solid) and len((a | b | c).proto.union.shapes) == 3
+    moved = meshd.cone(1, 0, 2, base_center=(0, 0, -1)).rotate(90, axis=(0, 1, 0),
+                                                                center=(1, 0, 0))
+    r = moved.scale(2, center=(0, 0, 1)).translate((1, 2, 3)).proto.translate
+    assert (r.offset.x, r.offset.y, r.offset.z) == (1, 2, 3), r
+    assert r.shape.scale.factor == 2 and r.shape.scale.center.z == 1, r
+    rot = r.shape.scale.shape.rotate
+    assert rot.angle_deg == 90 and rot.axis.y == 1 and rot.center.x == 1, rot
+    assert rot.shape.cone.top_radius == 0 and rot.shape.cone.base_center.z == -1, rot
+    h = meshd.half_space((0, 0, 2), 1).proto.half_space
+    assert h.normal.z == 2 and h.offset == 1, h
+    cyl = meshd.cylinder(0.5, 2, base_center=(1, 1, 0)).proto.cylinder
+    assert (cyl.radius, cyl.height, cyl.base_center.x) == (0.5, 2, 1), cyl
+    assert meshd.torus(2, 0.5, center=(0, 0, 1)).proto.torus.center.z == 1
 
 
 def main():
@@ -245,7 +322,7 @@ def main():
     args = parser.parse_args()
     return run_checks([test_installed_package, test_examples_from_builders, test_operators,
                        test_primitives_and_transforms, test_request_fields, test_size_grid,
-                       test_error_parsing, test_volume_builders,
+                       test_error_parsing, test_volume_builders, test_volume_requests,
                        test_event_decoder], args.examples)
 
 

@@ -53,31 +53,65 @@ def test_distance_grid(ctx):
 
 
 def test_volume(ctx):
-    """A cube minus a ball through the real meshd: a TetMesh whose tetrahedra are positive and
-    fill the volume, its groups, its file read back; the volume's own errors."""
+    """A cube minus a ball through the real meshd (about 800 nodes): the Done event's TetMesh,
+    whose tetrahedra are positive and fill the volume, its groups, its files read back by meshio
+    (.vtu and .msh); the volume's own errors."""
     part = meshd.box((-1, -1, -1), (1, 1, 1), name="box") - meshd.sphere(0.5, name="ball")
-    mesh = ctx.client.generate(meshd.request(part, h0=0.25))
+    events = list(ctx.client.stream(meshd.request(part, h0=0.25)))
+    assert isinstance(events[-1], meshd.Done), [type(e).__name__ for e in events]
+    mesh = events[-1].mesh
     assert isinstance(mesh, meshd.TetMesh), type(mesh)
-    assert mesh.points.shape[1] == 3 and mesh.tetrahedra.shape[1] == 4, mesh
-    assert mesh.boundary_faces.shape == (len(mesh.boundary_tags), 3), mesh
-    volumes = mesh.volumes()
+    n, m, f = len(mesh.points), len(mesh.tetrahedra), len(mesh.boundary_faces)
+    assert 500 < n < 2000, f"{n} nodes for the cube minus a ball at h0 0.25"
+    assert mesh.points.shape == (n, 3) and mesh.points.dtype == np.float64, mesh.points.dtype
+    assert mesh.tetrahedra.shape == (m, 4) and mesh.tetrahedra.dtype == np.int32, mesh
+    assert mesh.boundary_faces.shape == (f, 3) and mesh.boundary_tags.shape == (f,), mesh
+    assert 0 <= mesh.tetrahedra.min() and mesh.tetrahedra.max() < n, "index out of range"
+    # Volumes computed here, not with the package: (b - a) . ((c - a) x (d - a)) / 6.
+    p = mesh.points[mesh.tetrahedra]
+    volumes = np.einsum("ij,ij->i", p[:, 1] - p[:, 0],
+                        np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) / 6
     exact = 8 - 4 / 3 * math.pi * 0.5 ** 3
     assert volumes.min() > 0 and abs(volumes.sum() - exact) < 0.02 * exact, volumes.sum()
+    assert np.allclose(mesh.volumes(), volumes, rtol=1e-12, atol=0)
     assert abs(mesh.quality.volume - volumes.sum()) < 1e-9 * exact, mesh.quality
     assert mesh.quality.min_dihedral_deg > 10 and mesh.quality.q_min > 0.2, mesh.quality
+    assert mesh.quality.min_dihedral_deg < 70.53 < mesh.quality.max_dihedral_deg < 180
+    assert abs(mesh.tetrahedron_quality().min() - mesh.quality.q_min) < 1e-9, mesh.quality
+    assert sum(mesh.quality.histogram) == m, mesh.quality.histogram
     assert mesh.backend == "cpu" and mesh.stats.fixed_nodes > 8, (mesh.backend, mesh.stats)
+    assert mesh.stats.iterations > 0 and mesh.stats.t_slivers >= 0, mesh.stats
     assert sorted(mesh.boundary_groups) == ["ball", "box"], mesh.boundary_names
+    # Each group's faces lie nearer its own surface (by their centroids: at this coarse h0 a few
+    # faces reach a node inside, and the ball is only 2 h0 across).
+    for name, faces in mesh.boundary_groups.items():
+        centroids = mesh.points[faces].mean(axis=1)
+        nearer_box = 1 - np.abs(centroids).max(axis=1) < np.linalg.norm(centroids, axis=1) - 0.5
+        assert len(faces) > 12 and nearer_box.all() == (name == "box") == nearer_box.any(), name
     try:
         import meshio
     except ImportError:
         meshio = None
     if meshio:
-        path = os.path.join(ctx.tmp, "part.msh")
-        mesh.write(path)
-        back = meshio.read(path)
-        tets = sum(len(c.data) for c in back.cells if c.type == "tetra")
-        assert (len(back.points), tets) == (len(mesh.points), len(mesh.tetrahedra)), back
-        assert {"domain", "box", "ball"} <= set(back.field_data), back.field_data
+        for name in ("part.vtu", "part.msh"):
+            path = os.path.join(ctx.tmp, name)
+            mesh.write(path)
+            back = meshio.read(path)
+            # The same tetrahedra by their corners: meshio's MSH writer reorders nodes.
+            tets = np.concatenate([c.data for c in back.cells if c.type == "tetra"])
+            assert len(back.points) == n and same_rows(
+                back.points[tets].reshape(-1, 12), mesh.points[mesh.tetrahedra].reshape(-1, 12)), \
+                f"{name}: tetrahedra differ"
+            faces = sum(len(c.data) for c in back.cells if c.type == "triangle")
+            assert faces == f, f"{name}: {faces} boundary triangles"
+        groups = {k: tuple(v) for k, v in back.field_data.items()}
+        tag = {name: i + 2 for i, name in enumerate(mesh.boundary_names)}
+        assert groups == {"domain": (1, 3), "box": (tag["box"], 2), "ball": (tag["ball"], 2)}, \
+            groups
+        physical = np.concatenate([t for c, t in zip(back.cells, back.cell_data["gmsh:physical"])
+                                   if c.type == "triangle"])
+        counts = {name: int((physical == tag[name]).sum()) for name in tag}
+        assert counts == {k: len(v) for k, v in mesh.boundary_groups.items()}, counts
     try:
         ctx.client.generate(meshd.request(part, h0=0.25, backend="gpu"))
         raise AssertionError("a volume ran on BACKEND_GPU")
@@ -88,6 +122,12 @@ def test_volume(ctx):
         raise AssertionError("a negative radius was accepted")
     except meshd.InvalidArgument as e:
         assert "volume.geometry.sphere.radius" in str(e), e
+        assert e.field == "volume.geometry.sphere.radius", e.field
+    try:
+        ctx.client.generate(meshd.request(part, h0=0.25, snapshot_every=5))
+        raise AssertionError("a volume accepted snapshot_every")
+    except meshd.InvalidArgument as e:
+        assert e.field == "options.snapshot_every", e
 
 
 def same_rows(a, b):
@@ -116,6 +156,11 @@ def test_to_meshio(ctx):
     groups = {k: tuple(v) for k, v in back.field_data.items()}
     assert groups == {"domain": (1, 2), "outer": (2, 1), "hole": (3, 1)} or \
         groups == {"domain": (1, 2), "outer": (3, 1), "hole": (2, 1)}, groups
+    # Each group's lines keep its physical tag in the .msh (a cell block per group).
+    physical = np.concatenate([t for c, t in zip(back.cells, back.cell_data["gmsh:physical"])
+                               if c.type == "line"])
+    counts = {name: int((physical == groups[name][0]).sum()) for name in ("outer", "hole")}
+    assert counts == {k: len(v) for k, v in mesh.boundary_groups.items()}, counts
 
 
 def check_snapshots(events):
