@@ -10,14 +10,7 @@ mkdir -p out
 
 build/bin/meshd >out/meshd.log 2>&1 &
 meshd_pid=$!
-trap '# Volumes (3D): tetrahedra in the same formats, the SVG a picture of the surface.
-for request in examples/volumes/*.textproto; do
-  name=$(basename "$request" .textproto)
-  build/bin/meshctl generate "$request" \
-    -o "out/$name.msh" -o "out/$name.msh22" -o "out/$name.vtu" -o "out/$name.svg"
-done
-
-kill -TERM $meshd_pid 2>/dev/null || true' EXIT
+trap 'kill -TERM $meshd_pid 2>/dev/null || true' EXIT
 # SERVING once every worker is warm.
 for _ in $(seq 100); do
   build/bin/meshctl health --deadline 1 >/dev/null 2>&1 && break
@@ -27,6 +20,13 @@ done
 build/bin/meshctl health
 
 for request in examples/*.textproto; do
+  name=$(basename "$request" .textproto)
+  build/bin/meshctl generate "$request" \
+    -o "out/$name.msh" -o "out/$name.msh22" -o "out/$name.vtu" -o "out/$name.svg"
+done
+
+# Volumes (3D): tetrahedra in the same formats, the SVG a picture of the surface.
+for request in examples/volumes/*.textproto; do
   name=$(basename "$request" .textproto)
   build/bin/meshctl generate "$request" \
     -o "out/$name.msh" -o "out/$name.msh22" -o "out/$name.vtu" -o "out/$name.svg"
