@@ -57,8 +57,8 @@ bool name_char(char c) {
          c == '-' || c == '.';
 }
 
-}  // namespace
-
+// A boundary group's name: 1 to 64 letters, digits, '_', '-' or '.', not the domain's own
+// group name; Error(kInvalidArgument) naming `field` otherwise.
 void check_name(const std::string& name, const std::string& field) {
   const std::string allowed = "; a name is 1 to 64 letters, digits, '_', '-' or '.'";
   // The output files name the domain's own physical group so; a boundary group may not.
@@ -83,6 +83,8 @@ void check_name(const std::string& name, const std::string& field) {
                   "character " + std::to_string(i) + " (" + shown + ") is not allowed" + allowed);
   }
 }
+
+}  // namespace
 
 // A term's h_max: finite and at least its h_min.
 double at_least_h_min(double h_max, double h_min, const std::string& field) {

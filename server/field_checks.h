@@ -32,10 +32,6 @@ Vec2 to_vec2(const v1::Vec2& v, const std::string& field);
 // An estimate or a suggestion: 3 significant digits, whole numbers from 100 up.
 std::string approx(double v);
 
-// A boundary group's name: 1 to 64 letters, digits, '_', '-' or '.', not the domain's own
-// group name; Error(kInvalidArgument) naming `field` otherwise.
-void check_name(const std::string& name, const std::string& field);
-
 // A size term's h_max: finite and at least its h_min.
 double at_least_h_min(double h_max, double h_min, const std::string& field);
 

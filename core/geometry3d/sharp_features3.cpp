@@ -122,23 +122,19 @@ class Sampler {
   double count_ = 0.0;
 };
 
-// The profile's corners, as 2D meshes pin them (boundary_corners), in its own units.
-std::vector<Vec2> profile_corners(const Program& profile, const Box& box) {
-  return boundary_corners(profile, box);
-}
-
 // The candidates of one primitive (program3d.h gives the layout of q).
 void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler& s,
                       double spacing) {
   switch (op) {
     case Op3::kExtrusion: {
-      // The rims of both ends, and a vertical edge at each corner of the profile.
+      // The rims of both ends, and a vertical edge at each corner of the profile (its corners
+      // as a plane mesh pins them, in its own units).
       const Vec3 o = load(q), u = load(q + 3), v = load(q + 6), w = load(q + 9);
       const double sc = q[12], h = q[13];
       const Program& profile = *program.profiles[static_cast<size_t>(q[18])];
       const Box box{{q[14], q[15]}, {q[16], q[17]}};
       const auto at = [&](Vec2 p, double z) { return o + sc * (p.x * u + p.y * v + z * w); };
-      const std::vector<Vec2> corners = profile_corners(profile, box);
+      const std::vector<Vec2> corners = boundary_corners(profile, box);
       for (Vec2 c : corners) {
         s.corner(at(c, 0.0));
         s.corner(at(c, h));
@@ -158,7 +154,7 @@ void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler&
       const Box box{{-q[7], q[8]}, {q[7], q[9]}};
       const ProgramView view = profile.view();
       const double tiny = 1e-9 * spacing / sc;
-      for (Vec2 c : profile_corners(profile, box)) {
+      for (Vec2 c : boundary_corners(profile, box)) {
         if (c.x < -tiny) continue;
         const Vec3 centre = o + (sc * c.y) * a;
         if (c.x > tiny) {
@@ -168,9 +164,9 @@ void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler&
         // On the axis: an apex unless the outline leaves it square to the axis (a flat end,
         // smooth once revolved), which the distance's slope across the axis just off it tells.
         const double dx = 1e-3 * spacing / sc, step = 0.1 * dx;
-        const double slope = (eval_sdf(view, {c.x + dx + step, c.y}) -
-                              eval_sdf(view, {c.x + dx - step, c.y})) /
-                             (2 * step);
+        const double slope =
+            (eval_sdf(view, {c.x + dx + step, c.y}) - eval_sdf(view, {c.x + dx - step, c.y})) /
+            (2 * step);
         if (std::fabs(slope) > 1e-3) s.corner(centre);
       }
       return;
