@@ -21,6 +21,7 @@
 #include "core/distmesh3d/distmesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/node_estimate3d.h"
+#include "core/distmesh3d/surface_offset3d.h"
 #include "core/mesh/mesh_file.h"
 #include "core/mesh3d/tet_quality.h"
 #include "core/mesh3d/tet_validity.h"
@@ -91,8 +92,9 @@ int main(int argc, char** argv) {
   std::printf(
       "| domain | threads | h0 | nodes | tetrahedra | iterations | retri | removed / fixed unused "
       "| t_relax s "
-      "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral "
+      "| surface off / h0 (max, nodes > 1e-3) | settled / caps / stuck |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   for (const std::string& name : opt.domains) {
     try {
@@ -113,16 +115,20 @@ int main(int argc, char** argv) {
       }
       const double best_relax = best.t_relax, best_slivers = best.t_slivers;
       const meshd::TetQualityStats q = meshd::summarize_tet_quality(best.points, best.tets);
+      const meshd::SurfaceOffset3 off =
+          meshd::surface_offset3d(geometry.domain(), best.points, best.tets, 1e-3 * h0);
       const bool converged = best.converged;
       std::printf(
           "| %s | %u | %.5f | %zu | %zu | %d | %d | %lld / %lld | %.3f | %.3f | %.3f | %.3f | %.4f "
-          "| %lld | %.1f | %.1f |\n",
+          "| %lld | %.1f | %.1f | %.1e, %lld of %lld | %lld / %lld / %lld |\n",
           name.c_str(), pool.size(), h0, best.points.size(), best.tets.size(), best.iterations,
           best.retriangulations, static_cast<long long>(best.removed),
           static_cast<long long>(best.unused_fixed), best_relax, best_slivers,
           best_relax + best_slivers, q.q_min, q.q_mean,
           static_cast<long long>(q.histogram[0] + q.histogram[1]), q.min_dihedral_deg,
-          q.max_dihedral_deg);
+          q.max_dihedral_deg, off.max / h0, static_cast<long long>(off.beyond),
+          static_cast<long long>(off.surface), static_cast<long long>(best.surface.moved),
+          static_cast<long long>(best.surface.dropped), static_cast<long long>(best.surface.stuck));
       const meshd::TetMesh mesh = meshd::assemble_mesh3d(geometry.domain(), std::move(best));
       const meshd::TetValidityReport validity = meshd::check_tet_validity(mesh);
       if (!validity.valid()) std::printf("  INVALID: %s\n", validity.problems[0].c_str());

@@ -5,6 +5,7 @@
 #include "core/common/error.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
+#include "core/distmesh3d/settle_surface3d.h"
 #include "core/distmesh3d/step3d.h"
 #include "core/distmesh3d/topology3d.h"
 
@@ -124,21 +125,24 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
   topology = triangulate(nodes, stats);
+  const auto relaxed = std::chrono::steady_clock::now();
+  // The finish: the surface onto the boundary, then the slivers the forces leave.
+  check_cancel();
+  const SurfaceSettling surface =
+      settle_surface3d(domain, params.deps * h0, nodes.points, topology.tets, nodes.fixed, pool);
   Relaxed3 out = compact(std::move(nodes.points), std::move(topology.tets), nodes.fixed);
+  out.surface = surface;
   out.iterations = stats.iterations;
   out.retriangulations = stats.retriangulations + 1;
   out.removed = stats.removed;
   out.converged = stats.converged;
-  const auto relaxed = std::chrono::steady_clock::now();
   out.t_relax = std::chrono::duration<double>(relaxed - start).count();
-  // The finish: slivers, which the forces leave (optimize_slivers3d.h).
   if (params.optimize_slivers) {
     check_cancel();
     out.optimizer_moves =
         optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, out.fixed, pool);
-    out.t_slivers =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - relaxed).count();
   }
+  out.t_slivers = std::chrono::duration<double>(std::chrono::steady_clock::now() - relaxed).count();
   return out;
 }
 

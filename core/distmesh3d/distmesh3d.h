@@ -12,6 +12,7 @@
 #include "core/distmesh/observer.h"
 #include "core/distmesh3d/domain3d.h"
 #include "core/distmesh3d/params3d.h"
+#include "core/distmesh3d/settle_surface3d.h"
 
 namespace meshd {
 
@@ -24,9 +25,10 @@ struct Relaxed3 {
   int iterations = 0;
   int retriangulations = 0;
   int64_t removed = 0;          // nodes density control took out, and free nodes on another node
+  SurfaceSettling surface;      // the surface nodes moved onto the boundary (settle_surface3d.h)
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
   double t_relax = 0.0;         // seconds: steps 1-8 and the last triangulation
-  double t_slivers = 0.0;       // seconds: the sliver optimisation
+  double t_slivers = 0.0;       // seconds: the surface settling and the sliver optimisation
   bool converged = false;
 };
 

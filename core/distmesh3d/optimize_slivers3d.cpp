@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/common/colour_groups.h"
 #include "core/distmesh3d/projection3d.h"
 #include "core/mesh3d/tet_boundary.h"
 #include "core/mesh3d/tet_quality.cuh"
+#include "core/mesh3d/tet_stars.h"
 
 namespace meshd {
 namespace {
@@ -43,16 +43,9 @@ class SliverOptimizer {
         fixed_(fixed),
         pool_(pool),
         on_boundary_(points.size(), 0),
-        first_(points.size() + 1, 0) {
+        stars_(points.size(), tets) {
     for (const auto& f : tet_boundary_faces(tets))
       for (int32_t v : f) on_boundary_[v] = 1;
-    for (const auto& t : tets)
-      for (int32_t v : t) ++first_[v + 1];
-    for (size_t v = 0; v < points.size(); ++v) first_[v + 1] += first_[v];
-    star_.resize(first_.back());
-    std::vector<int64_t> next(first_.begin(), first_.end() - 1);
-    for (size_t t = 0; t < tets.size(); ++t)
-      for (int32_t v : tets[t]) star_[next[v]++] = static_cast<int32_t>(t);
   }
 
   int64_t run() {
@@ -93,12 +86,8 @@ class SliverOptimizer {
     return nodes;
   }
 
-  // `nodes` (increasing) in groups of which no two share a tetrahedron (colour_groups.h).
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    return meshd::colour_groups(nodes, [&](int32_t v, auto&& visit) {
-      for (int64_t k = first_[v]; k < first_[v + 1]; ++k)
-        for (int32_t u : t_[star_[k]]) visit(u);
-    });
+    return stars_.colour_groups(nodes, t_);
   }
 
   // How good v's star is with v at x: its worst quality up to the target, then its mean.
@@ -113,41 +102,14 @@ class SliverOptimizer {
     const Vec3 saved = p_[v];
     p_[v] = x;
     double worst = INFINITY, sum = 0.0;
-    for (int64_t k = first_[v]; k < first_[v + 1]; ++k) {
-      const double q = quality(star_[k]);
+    stars_.for_each(v, [&](int32_t t) {
+      const double q = quality(t);
       worst = std::min(worst, q);
       sum += q;
-    }
+    });
     p_[v] = saved;
-    const auto count = static_cast<double>(first_[v + 1] - first_[v]);
+    const auto count = static_cast<double>(stars_.size(v));
     return {std::min(worst, kOptimizeBelowQuality3), count > 0.0 ? sum / count : 0.0};
-  }
-
-  double mean_star_edge(int32_t v) const {
-    double sum = 0.0;
-    int count = 0;
-    for (int64_t k = first_[v]; k < first_[v + 1]; ++k)
-      for (int32_t u : t_[star_[k]]) {
-        if (u == v) continue;
-        sum += norm(p_[u] - p_[v]);
-        ++count;
-      }
-    return count > 0 ? sum / count : 0.0;
-  }
-
-  // Eight directions in the boundary's tangent plane at v, or none where it has no normal.
-  int tangent_directions(int32_t v, Vec3* dirs) const {
-    const Vec3 g = distance_gradient3d(domain_, p_[v], domain_.distance(p_[v]), step_);
-    const double len = norm(g);
-    if (!(len > 0.0)) return 0;
-    const Vec3 n = (1.0 / len) * g;
-    // Any vector not along n, crossed with n, gives the first tangent.
-    const Vec3 a = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
-    Vec3 t1 = cross(n, a);
-    t1 = (1.0 / norm(t1)) * t1;
-    const Vec3 t2 = cross(n, t1);
-    for (int k = 0; k < 8; ++k) dirs[k] = std::cos(k * M_PI / 4) * t1 + std::sin(k * M_PI / 4) * t2;
-    return 8;
   }
 
   // Pattern search from v's position; returns whether v moved.
@@ -156,14 +118,14 @@ class SliverOptimizer {
     const bool boundary = on_boundary_[v];
     Score best = star_score(v, p_[v]);
     const Vec3 start = p_[v];
-    double length = 0.25 * mean_star_edge(v);
+    double length = 0.25 * stars_.mean_edge(v, p_, t_);
     for (int h = 0; h < kStepHalvings; ++h, length *= 0.5) {
       for (bool improved = true; improved;) {
         improved = false;
         Vec3 dirs[14];
         int n_dirs = 0;
         if (boundary) {
-          n_dirs = tangent_directions(v, dirs);
+          n_dirs = boundary_tangents3d(domain_, p_[v], step_, dirs);
           if (n_dirs == 0) return !(p_[v] == start);
         } else {
           for (const Vec3& d : kSpace) dirs[n_dirs++] = d;
@@ -195,8 +157,7 @@ class SliverOptimizer {
   int64_t fixed_;
   ThreadPool* pool_;
   std::vector<char> on_boundary_;
-  std::vector<int64_t> first_;  // #N + 1: node v's tetrahedra are star_[first_[v] .. first_[v+1])
-  std::vector<int32_t> star_;
+  TetStars stars_;
 };
 
 }  // namespace

@@ -2,6 +2,8 @@
 // of the 3D loop), shared by the step and the sliver optimisation.
 #pragma once
 
+#include <cmath>
+
 #include "core/common/vec3.h"
 #include "core/distmesh3d/domain3d.h"
 
@@ -20,6 +22,22 @@ inline Vec3 project_step3d(const Domain3& domain, Vec3 p, double d, double step)
   const Vec3 g = distance_gradient3d(domain, p, d, step);
   const double g2 = dot(g, g);
   return g2 > 0.0 ? p - (d / g2) * g : p;
+}
+
+// Eight unit directions in the boundary's tangent plane at p (about the distance's gradient),
+// into dirs; returns 8, or 0 where the gradient vanishes.
+inline int boundary_tangents3d(const Domain3& domain, Vec3 p, double step, Vec3* dirs) {
+  const Vec3 g = distance_gradient3d(domain, p, domain.distance(p), step);
+  const double len = norm(g);
+  if (!(len > 0.0)) return 0;
+  const Vec3 n = (1.0 / len) * g;
+  // Any vector not along n, crossed with n, gives the first tangent.
+  const Vec3 a = std::fabs(n.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  Vec3 t1 = cross(n, a);
+  t1 = (1.0 / norm(t1)) * t1;
+  const Vec3 t2 = cross(n, t1);
+  for (int k = 0; k < 8; ++k) dirs[k] = std::cos(k * M_PI / 4) * t1 + std::sin(k * M_PI / 4) * t2;
+  return 8;
 }
 
 // Moves p onto the boundary (from either side) with a few Newton steps.

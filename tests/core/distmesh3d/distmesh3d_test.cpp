@@ -6,6 +6,7 @@
 
 #include "core/common/error.h"
 #include "core/distmesh3d/geometry_domain3d.h"
+#include "core/distmesh3d/surface_offset3d.h"
 #include "core/mesh3d/tet_quality.h"
 #include "tests/core/geometry3d/shape3d_builders.h"
 
@@ -25,7 +26,8 @@ double volume(const Relaxed3& r) {
   return v;
 }
 
-// Every node used, every tetrahedron positive, the boundary nodes on the boundary.
+// Every node used, every tetrahedron positive, no node outside, the surface's nodes on the
+// boundary within 1e-3 h0.
 void expect_valid(const Domain3& domain, const Relaxed3& r, double h0) {
   std::vector<char> used(r.points.size(), 0);
   for (const auto& t : r.tets) {
@@ -35,6 +37,9 @@ void expect_valid(const Domain3& domain, const Relaxed3& r, double h0) {
   }
   for (char u : used) EXPECT_TRUE(u);
   for (const Vec3& p : r.points) EXPECT_LT(domain.distance(p), 1e-3 * h0);
+  const SurfaceOffset3 off = surface_offset3d(domain, r.points, r.tets, 1e-3 * h0);
+  EXPECT_GT(off.surface, 0);
+  EXPECT_EQ(off.beyond, 0) << "farthest " << off.max / h0 << " h0";
 }
 
 TEST(Distmesh3d, MeshesTheUnitBallWithoutSlivers) {
