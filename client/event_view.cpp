@@ -93,12 +93,13 @@ void EventView::summary(const v1::Done& d, const std::string& job_id) {
         "job %s done on %s\n"
         "  nodes %lld  tetrahedra %lld  iterations %d%s\n"
         "  time %.3f s (mesh %.3f s, queue %.3f s)\n"
-        "  quality q_min %.3f  q_mean %.4f  dihedral angles %.1f to %.1f deg\n",
+        "  quality q_min %.3f  q_mean %.4f  dihedral angles %.1f to %.1f deg\n"
+        "  volume %.6g  surface nodes off the boundary by at most %.2g\n",
         job_id.c_str(), d.device().c_str(), static_cast<long long>(d.nodes()),
         static_cast<long long>(d.tetrahedra()), s.iterations(),
         s.converged() ? "" : " (stopped at max_iterations: not converged)",
         s.t_mesh() + s.queue_wait_s(), s.t_mesh(), s.queue_wait_s(), q.q_min(), q.q_mean(),
-        q.min_dihedral_deg(), q.max_dihedral_deg());
+        q.min_dihedral_deg(), q.max_dihedral_deg(), q.volume(), q.max_surface_offset());
     return;
   }
   std::printf(

@@ -72,6 +72,7 @@ v1::Quality to_proto(const TetQualityStats& q) {
   out.set_min_dihedral_deg(q.min_dihedral_deg);
   out.set_max_dihedral_deg(q.max_dihedral_deg);
   out.set_volume(q.volume);
+  out.set_max_surface_offset(q.max_surface_offset);
   return out;
 }
 

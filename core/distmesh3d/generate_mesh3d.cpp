@@ -6,6 +6,7 @@
 #include "core/distmesh3d/assemble_mesh3d.h"
 #include "core/distmesh3d/distmesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
+#include "core/distmesh3d/surface_offset3d.h"
 
 namespace meshd {
 
@@ -33,6 +34,8 @@ MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer*
   out.stats.t_slivers = relaxed.t_slivers;
   out.mesh = assemble_mesh3d(geometry.domain(), std::move(relaxed));
   out.quality = summarize_tet_quality(out.mesh);
+  out.quality.max_surface_offset =
+      surface_offset3d(geometry.domain(), out.mesh.points, out.mesh.tets, 0.0).max;
   out.stats.t_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

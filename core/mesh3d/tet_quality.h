@@ -19,6 +19,9 @@ struct TetQualityStats {
   double min_dihedral_deg = 0.0;  // over all six angles of every tetrahedron, degrees
   double max_dihedral_deg = 0.0;
   double volume = 0.0;  // the sum of the tetrahedra's signed volumes, request length unit cubed
+  // The largest distance of a surface node from the domain's boundary, which the mesh alone does
+  // not know: set by generate_mesh3d (surface_offset3d.h), 0 from summarize_tet_quality.
+  double max_surface_offset = 0.0;
   // histogram[k] counts tetrahedra with q in [k/10, (k+1)/10); q = 1 lands in the last bin, a
   // turned-over or flat one (q <= 0) in the first.
   std::array<int64_t, kQualityBins> histogram{};

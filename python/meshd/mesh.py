@@ -46,8 +46,8 @@ def _from_proto(cls, message):
 class Quality:
     """Radius ratio 2 r_in / R_circ over the triangles (3 r_in / R_circ over a volume's
     tetrahedra; 1 equilateral, 0 degenerate); histogram[k] counts q in [k/10, (k+1)/10). A
-    volume's report has the dihedral angles' range and its volume, a plane's the smallest
-    angle."""
+    volume's report has the dihedral angles' range, its volume and how far its surface nodes
+    lie from the boundary at most, a plane's the smallest angle."""
     q_min: float
     q_mean: float
     min_angle_deg: float
@@ -55,11 +55,12 @@ class Quality:
     min_dihedral_deg: float = 0.0
     max_dihedral_deg: float = 0.0
     volume: float = 0.0
+    max_surface_offset: float = 0.0
 
     @classmethod
     def from_proto(cls, q):
         return cls(q.q_min, q.q_mean, q.min_angle_deg, tuple(q.histogram), q.min_dihedral_deg,
-                   q.max_dihedral_deg, q.volume)
+                   q.max_dihedral_deg, q.volume, q.max_surface_offset)
 
 
 @dataclass(frozen=True)

@@ -77,6 +77,11 @@ def test_volume(ctx):
     assert abs(mesh.quality.volume - volumes.sum()) < 1e-9 * exact, mesh.quality
     assert mesh.quality.min_dihedral_deg > 10 and mesh.quality.q_min > 0.2, mesh.quality
     assert mesh.quality.min_dihedral_deg < 70.53 < mesh.quality.max_dihedral_deg < 180
+    # The surface's nodes on the cube or the sphere within 1e-3 h0, by the exact distance here.
+    s = mesh.points[np.unique(mesh.boundary_faces)]
+    off = np.maximum(np.abs(s).max(axis=1) - 1, 0.5 - np.linalg.norm(s, axis=1))
+    assert np.abs(off).max() < 1e-3 * 0.25, np.abs(off).max()
+    assert abs(mesh.quality.max_surface_offset - np.abs(off).max()) < 1e-9, mesh.quality
     assert abs(mesh.tetrahedron_quality().min() - mesh.quality.q_min) < 1e-9, mesh.quality
     assert sum(mesh.quality.histogram) == m, mesh.quality.histogram
     assert mesh.backend == "cpu" and mesh.stats.fixed_nodes > 8, (mesh.backend, mesh.stats)

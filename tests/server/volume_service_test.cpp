@@ -3,6 +3,8 @@
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include "client/result_assembly.h"
@@ -54,6 +56,16 @@ TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
   EXPECT_GT(r.done.quality().q_min(), 0.2);
   EXPECT_GT(r.done.quality().min_dihedral_deg(), 10.0);
   EXPECT_GT(r.done.stats().fixed_nodes(), 8);
+  // The surface's nodes on the box or the ball within 1e-3 h0, by the exact distance here.
+  double farthest = 0.0;
+  for (const auto& f : mesh.boundary_faces)
+    for (int32_t v : f) {
+      const Vec3 p = mesh.points[v];
+      const double box = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) - 1.0;
+      farthest = std::max(farthest, std::fabs(std::max(box, 0.5 - norm(p))));
+    }
+  EXPECT_LT(farthest, 1e-3 * 0.2);
+  EXPECT_NEAR(r.done.quality().max_surface_offset(), farthest, 1e-9);
 }
 
 TEST(VolumeService, BadVolumesAndTheGpuBackendAreRefused) {
