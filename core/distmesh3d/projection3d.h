@@ -40,9 +40,16 @@ inline int boundary_tangents3d(const Domain3& domain, Vec3 p, double step, Vec3*
   return 8;
 }
 
-// Moves p onto the boundary (from either side) with a few Newton steps.
-inline Vec3 project_to_boundary3d(const Domain3& domain, Vec3 p, double step, int steps = 3) {
-  for (int i = 0; i < steps; ++i) p = project_step3d(domain, p, domain.distance(p), step);
+// Moves p onto the boundary (from either side) by Newton steps, until its distance is within a
+// thousandth of `step` or after `steps`. A smooth surface takes one or two; a crease where CSG
+// meets two surfaces at a slant takes more, each step landing on one surface a little outside the
+// other.
+inline Vec3 project_to_boundary3d(const Domain3& domain, Vec3 p, double step, int steps = 12) {
+  for (int i = 0; i < steps; ++i) {
+    const double d = domain.distance(p);
+    if (std::fabs(d) <= 1e-3 * step) break;
+    p = project_step3d(domain, p, d, step);
+  }
   return p;
 }
 
