@@ -25,9 +25,10 @@ struct ConversionLimits {
   int max_tree_nodes = 1'000'000;  // Shape nodes in one tree (geometry or a size term)
   // Shape3 nodes in one 3D tree: every point evaluates all of them (no spatial index in 3D yet).
   int max_tree3_nodes = 1'000;
-  int max_polygon_vertices = 5'000'000;  // vertices of one polygon (indexed: bvh.h)
-  double max_size_ratio = 1000;          // bound on (largest h) / (smallest h) of the size field
-  int max_size_terms = 100;              // terms of the size field
+  int64_t max_polyhedron_triangles = 2'000'000;  // triangles of all the polyhedra of a request
+  int max_polygon_vertices = 5'000'000;          // vertices of one polygon (indexed: bvh.h)
+  double max_size_ratio = 1000;  // bound on (largest h) / (smallest h) of the size field
+  int max_size_terms = 100;      // terms of the size field
   int64_t max_size_grid_values = 16'777'216;  // samples of all grid terms together
   int max_fixed_points = 100'000;             // entries of fixed_points
   // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well

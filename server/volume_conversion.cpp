@@ -1,6 +1,7 @@
 #include "server/volume_conversion.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -112,6 +113,9 @@ class Shape3Converter {
         out.node = Revolution{to_shape(r.profile(), limits_, p + ".profile")};
         break;
       }
+      case v1::Shape3::kPolyhedron:
+        out.node = polyhedron(in.polyhedron(), path + ".polyhedron");
+        break;
       case v1::Shape3::kUnion:
         out.node = csg(CsgOp::kUnion, in.union_().shapes(), path + ".union", depth, name);
         break;
@@ -173,7 +177,8 @@ class Shape3Converter {
       case v1::Shape3::KIND_NOT_SET:
         throw_invalid(path,
                       "no shape kind set; set exactly one of sphere, box, cylinder, cone, torus, "
-                      "half_space, extrusion, revolution, union, intersection, difference, "
+                      "half_space, extrusion, revolution, polyhedron, union, intersection, "
+                      "difference, "
                       "translate, rotate, scale");
     }
     return out;
@@ -190,8 +195,52 @@ class Shape3Converter {
     return c;
   }
 
+  // The arrays' shapes and the triangle budget; the surface's own rules (closed, manifold, no
+  // zero area) are the compiler's, which names the same fields.
+  Polyhedron polyhedron(const v1::Polyhedron& in, const std::string& p) {
+    if (in.vertices_size() % 3 != 0) {
+      throw_invalid(p + ".vertices", "must hold x, y, z triples (got " +
+                                         std::to_string(in.vertices_size()) + " numbers)");
+    }
+    if (in.triangles_size() % 3 != 0) {
+      throw_invalid(p + ".triangles", "must hold index triples (got " +
+                                          std::to_string(in.triangles_size()) + " numbers)");
+    }
+    triangles_ += in.triangles_size() / 3;
+    if (triangles_ > limits_.max_polyhedron_triangles) {
+      throw Error(ErrorCode::kResourceExhausted, p + ".triangles",
+                  "the request's polyhedra hold more than " +
+                      std::to_string(limits_.max_polyhedron_triangles) + " triangles in all");
+    }
+    Polyhedron out;
+    out.vertices.reserve(in.vertices_size() / 3);
+    for (int i = 0; i < in.vertices_size(); i += 3) {
+      const auto number = [&](int k) {
+        return finite(in.vertices(i + k), at(p, "vertices", i + k));
+      };
+      out.vertices.push_back({number(0), number(1), number(2)});
+    }
+    const auto n = static_cast<uint32_t>(out.vertices.size());
+    out.triangles.reserve(in.triangles_size() / 3);
+    for (int i = 0; i < in.triangles_size(); i += 3) {
+      std::array<int32_t, 3> t{};
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = in.triangles(i + k);
+        if (v >= n) {
+          throw_invalid(at(p, "triangles", i + k), "must be a vertex index in [0, " +
+                                                       std::to_string(n) + ") (got " +
+                                                       std::to_string(v) + ")");
+        }
+        t[k] = static_cast<int32_t>(v);
+      }
+      out.triangles.push_back(t);
+    }
+    return out;
+  }
+
   const ConversionLimits& limits_;
   TreeBudget budget_;
+  int64_t triangles_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------------

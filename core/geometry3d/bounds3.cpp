@@ -74,6 +74,8 @@ Box3 primitive_box(Op3 op, const double* q) {
       return around(load(q) + (sc * 0.5 * (q[8] + q[9])) * a,
                     (sc * 0.5 * (q[9] - q[8])) * abs3(a) + disk_extent(a, sc * q[7]));
     }
+    case Op3::kPolyhedron:
+      return {load(q), load(q + 3)};
     case Op3::kHalfSpace: {
       // Bounded on one side where its normal is a coordinate axis, unbounded otherwise.
       Box3 b = kWholeSpace;

@@ -12,6 +12,7 @@
 #include "core/common/error.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
+#include "core/geometry3d/triangle_surface3.h"
 
 namespace meshd {
 namespace {
@@ -246,6 +247,24 @@ class Emitter3 {
                 "revolution");
   }
 
+  int emit_node(const Shape3& s, const Polyhedron& poly, const Similarity3& t) {
+    const std::string p = s.path + ".polyhedron";
+    std::vector<Vec3> world;
+    world.reserve(poly.vertices.size());
+    for (size_t i = 0; i < poly.vertices.size(); ++i) {
+      const Vec3 v = apply(t, finite(poly.vertices[i], p + ".vertices[" + std::to_string(i) + "]"));
+      check_folded(s, {v.x, v.y, v.z}, {});
+      world.push_back(v);
+    }
+    auto surface = std::make_shared<const TriangleSurface3>(
+        build_triangle_surface3(std::move(world), poly.triangles, p));
+    const Box3 b = surface->box;
+    program_.surfaces.push_back(std::move(surface));
+    const auto k = static_cast<double>(program_.surfaces.size() - 1);
+    return push(s, Op3::kPolyhedron, {b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z, k},
+                "polyhedron");
+  }
+
   // Left fold: a, b, op, c, op, ... keeps one accumulated value on the stack; a difference
   // negates each subtrahend before its max.
   int emit_node(const Shape3& s, const Csg3& csg, const Similarity3& t) {
@@ -292,6 +311,7 @@ Program3 compile_geometry3(const Shape3& root) {
   program.root_path = root.path;
   Emitter3(program).emit(root, Similarity3{});
   for (const auto& profile : program.profiles) program.profile_views->push_back(profile->view());
+  for (const auto& surface : program.surfaces) program.surface_views->push_back(surface->view());
   return program;
 }
 

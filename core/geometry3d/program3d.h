@@ -29,9 +29,11 @@
 //   kRevolution ox oy oz ax ay az s R z0 z1 k
 //               (a point on the axis, the unit axis, the scale; the profile's largest x, its
 //               lowest and highest y, in its own units; its index k in `profiles`)
+//   kPolyhedron x0 y0 z0 x1 y1 z1 k          (its box; its index k in `surfaces`)
 //
 // Extrusions and revolutions evaluate their 2D profile, compiled (core/geometry/program.h) and
-// kept in `profiles`; the view points at one 2D view per profile.
+// kept in `profiles`; the view points at one 2D view per profile. A polyhedron's triangles, in
+// their hierarchy (triangle_surface3.h), are kept in `surfaces` the same way.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,7 @@
 #include <vector>
 
 #include "core/geometry/program.h"
+#include "core/geometry3d/triangle_surface3.h"
 
 namespace meshd {
 
@@ -54,6 +57,7 @@ enum class Op3 : uint32_t {
   kHalfSpace,
   kExtrusion,
   kRevolution,
+  kPolyhedron,
   kMin,
   kMax,
   kNegate,
@@ -76,7 +80,8 @@ struct Program3View {
   const Instruction3* code;
   uint32_t size;
   const double* params;
-  const ProgramView* profiles;  // one per 2D profile
+  const ProgramView* profiles;           // one per 2D profile
+  const TriangleSurface3View* surfaces;  // one per polyhedron
 };
 
 struct Program3 {
@@ -88,9 +93,14 @@ struct Program3 {
   std::vector<std::shared_ptr<const Program>> profiles;
   std::shared_ptr<std::vector<ProgramView>> profile_views =
       std::make_shared<std::vector<ProgramView>>();
+  // The polyhedra's surfaces and their views, shared likewise.
+  std::vector<std::shared_ptr<const TriangleSurface3>> surfaces;
+  std::shared_ptr<std::vector<TriangleSurface3View>> surface_views =
+      std::make_shared<std::vector<TriangleSurface3View>>();
 
   Program3View view() const {
-    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), profile_views->data()};
+    return {code.data(), static_cast<uint32_t>(code.size()), params.data(), profile_views->data(),
+            surface_views->data()};
   }
 };
 

@@ -12,6 +12,7 @@
 #include "core/common/vec3.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/geometry3d/program3d.h"
+#include "core/geometry3d/surface_sdf3.cuh"
 
 namespace meshd {
 namespace sdf3_detail {
@@ -140,6 +141,8 @@ MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins
       return sdf3_extrusion(q, prog.profiles, p);
     case Op3::kRevolution:
       return sdf3_revolution(q, prog.profiles, p);
+    case Op3::kPolyhedron:
+      return sdf3_surface(prog.surfaces[static_cast<int>(q[6])], p);
     default:
       return NAN;
   }

@@ -10,6 +10,8 @@
 // and the field: "geometry.union.shapes[2].sphere.radius".
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <variant>
 #include <vector>
@@ -76,6 +78,13 @@ struct Revolution {
   Shape profile;  // bounded, reaching x > 0, not touching x = 0 from one side only
 };
 
+// A closed triangle surface (triangle_surface3.h states what it must be): vertices before any
+// enclosing transform and triangles of indices into them, turned either way.
+struct Polyhedron {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int32_t, 3>> triangles;
+};
+
 struct Shape3;
 
 // Union and intersection take one or more operands; difference is operands[0] minus the rest.
@@ -107,8 +116,8 @@ struct Transformed3 {
 };
 
 struct Shape3 {
-  std::variant<Sphere, Cuboid, Cylinder, Frustum, Torus, HalfSpace, Extrusion, Revolution, Csg3,
-               Transformed3>
+  std::variant<Sphere, Cuboid, Cylinder, Frustum, Torus, HalfSpace, Extrusion, Revolution,
+               Polyhedron, Csg3, Transformed3>
       node;
   std::string name;  // boundary group name for the primitives below; may be empty
   std::string path;  // request field path of this node, for errors

@@ -105,6 +105,25 @@ class Sampler {
     }
   }
 
+  // Points along the polyline `line` (a loop when `closed`: its last point joins its first) at
+  // equal arc lengths at most `spacing` apart, its ends excluded (they are corners) unless it is a
+  // loop, which gets at least 3.
+  void polyline(const std::vector<Vec3>& line, bool closed) {
+    std::vector<double> at(line.size(), 0.0);
+    for (size_t i = 1; i < line.size(); ++i) at[i] = at[i - 1] + norm(line[i] - line[i - 1]);
+    const double total = at.back() + (closed ? norm(line.front() - line.back()) : 0.0);
+    const double n = std::max(closed ? 3.0 : 1.0, std::ceil(total / spacing_));
+    reserve(n);
+    size_t seg = 0;
+    for (int i = closed ? 0 : 1; i < static_cast<int>(n); ++i) {
+      const double want = total * i / n;
+      while (seg + 1 < line.size() && at[seg + 1] < want) ++seg;
+      const Vec3 a = line[seg], b = seg + 1 < line.size() ? line[seg + 1] : line.front();
+      const double len = norm(b - a);
+      out_.push_back(len > 0.0 ? a + ((want - at[seg]) / len) * (b - a) : a);
+    }
+  }
+
  private:
   void reserve(double n) {
     count_ += n;
@@ -121,6 +140,59 @@ class Sampler {
   const std::string* path_ = nullptr;
   double count_ = 0.0;
 };
+
+// A polyhedron's sharp edges (triangle_surface3.h) in chains: a corner where other than two sharp
+// edges meet or where two meet at an angle, samples along each chain between corners (and along
+// each loop without one), so that a finely tessellated sharp curve gets samples `spacing` apart
+// rather than a node at each of its vertices.
+void sample_sharp_edges(const TriangleSurface3& surface, Sampler& s) {
+  std::unordered_map<int32_t, std::vector<int32_t>> next;  // sharp neighbours of each vertex
+  for (const auto& e : surface.sharp_edges) {
+    next[e[0]].push_back(e[1]);
+    next[e[1]].push_back(e[0]);
+  }
+  const double straight_cos = -std::cos(kSharpSurfaceAngleDeg * std::numbers::pi / 180.0);
+  const auto is_corner = [&](int32_t v) {
+    const std::vector<int32_t>& n = next.at(v);
+    if (n.size() != 2) return true;
+    const Vec3 p = surface.vertices[v];
+    const Vec3 a = surface.vertices[n[0]] - p, b = surface.vertices[n[1]] - p;
+    return dot(a, b) > straight_cos * norm(a) * norm(b);  // turns by more than the sharp angle
+  };
+  std::unordered_map<uint64_t, char> used;
+  const auto key = [](int32_t a, int32_t b) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b))) << 32) |
+           static_cast<uint32_t>(std::max(a, b));
+  };
+  // Follows the chain from corner-or-start `from` through `to` until a corner or back at `from`.
+  const auto walk = [&](int32_t from, int32_t to) {
+    std::vector<Vec3> line{surface.vertices[from]};
+    int32_t prev = from, at = to;
+    used[key(prev, at)] = 1;
+    while (at != from && !is_corner(at)) {
+      line.push_back(surface.vertices[at]);
+      const std::vector<int32_t>& n = next.at(at);
+      const int32_t after = n[0] == prev ? n[1] : n[0];
+      prev = at;
+      at = after;
+      used[key(prev, at)] = 1;
+    }
+    if (at != from) line.push_back(surface.vertices[at]);
+    s.polyline(line, at == from);
+  };
+  std::vector<int32_t> vertices;
+  for (const auto& [v, n] : next) vertices.push_back(v);
+  std::sort(vertices.begin(), vertices.end());  // the same points in the same order every time
+  for (int32_t v : vertices) {
+    if (!is_corner(v)) continue;
+    s.corner(surface.vertices[v]);
+    for (int32_t u : next.at(v))
+      if (!used.contains(key(v, u))) walk(v, u);
+  }
+  for (int32_t v : vertices)  // loops without a corner
+    for (int32_t u : next.at(v))
+      if (!used.contains(key(v, u))) walk(v, u);
+}
 
 // The candidates of one primitive (program3d.h gives the layout of q).
 void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler& s,
@@ -203,6 +275,9 @@ void sample_primitive(const Program3& program, Op3 op, const double* q, Sampler&
       }
       return;
     }
+    case Op3::kPolyhedron:
+      sample_sharp_edges(*program.surfaces[static_cast<size_t>(q[6])], s);
+      return;
     default:  // spheres, tori and half-spaces are smooth
       return;
   }

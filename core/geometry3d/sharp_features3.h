@@ -5,9 +5,10 @@
 // Only the primitives' own features count: a cuboid's 8 corners and 12 edges, the rims of a
 // cylinder and of a frustum (each end with a radius > 0) and a cone's apex, an extrusion's two
 // rims (its profile's boundary, boundary_samples.h) and a vertical edge at each corner of the
-// profile, a revolution's rim at each corner of its profile (an apex on the axis), sampled along
-// each edge and kept where they lie on the final domain's boundary. Edges that CSG creates where two
-// primitives' surfaces meet (a sphere cutting a cuboid's face, two cylinders crossing) are not
+// profile, a revolution's rim at each corner of its profile (an apex on the axis), a polyhedron's
+// edges where its faces meet at more than kSharpSurfaceAngleDeg (in chains), sampled along
+// each edge and kept where they lie on the final domain's boundary. Edges that CSG creates where
+// two primitives' surfaces meet (a sphere cutting a cuboid's face, two cylinders crossing) are not
 // found yet: the mesh rounds them off by about the local edge length.
 #pragma once
 

@@ -33,8 +33,8 @@ from meshd.job_info import JobInfo
 from meshd.mesh import Mesh, Quality, RunStats, TetMesh
 from meshd.request import request
 from meshd.size_field import feature, graded, grid, uniform
-from meshd.solid import (Solid, box, cone, cylinder, extrude, half_space, revolve, sphere,
-                         torus)
+from meshd.solid import (Solid, box, cone, cylinder, extrude, half_space, polyhedron, revolve,
+                         sphere, torus)
 from meshd.v1 import geometry3d_pb2, geometry_pb2, mesh_pb2, request_pb2, service_pb2
 
 __version__ = "0.1.0"
@@ -48,6 +48,7 @@ __all__ = [
     "Shape", "circle", "rectangle", "polygon", "ellipse", "half_plane", "distance_grid", "union",
     "intersection", "difference",
     "Solid", "sphere", "box", "cylinder", "cone", "torus", "half_space", "extrude", "revolve",
+    "polyhedron",
     "JobInfo", "Mesh", "TetMesh", "Quality", "RunStats", "request", "uniform", "graded", "grid",
     "feature", "geometry_pb2", "geometry3d_pb2", "mesh_pb2", "request_pb2", "service_pb2",
 ]

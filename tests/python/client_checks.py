@@ -135,6 +135,34 @@ def test_volume(ctx):
         assert e.field == "options.snapshot_every", e
 
 
+def test_polyhedron(ctx):
+    """A solid given by its triangle surface (the cube as 12 triangles, given inward) minus a ball,
+    through the real meshd: the same volume as the box's, its surface on the cube or the ball; an
+    open surface refused, naming its field."""
+    corners = np.array([[x, y, z] for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)], float)
+    outward = np.array([[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
+                        [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]])
+    inward = outward[:, [0, 2, 1]]
+    part = meshd.polyhedron(corners, inward, name="box") - meshd.sphere(0.5, name="ball")
+    mesh = ctx.client.generate(meshd.request(part, h0=0.25))
+    assert isinstance(mesh, meshd.TetMesh) and sorted(mesh.boundary_groups) == ["ball", "box"]
+    exact = 8 - 4 / 3 * math.pi * 0.5 ** 3
+    assert abs(mesh.volumes().sum() - exact) < 0.02 * exact and mesh.volumes().min() > 0
+    s = mesh.points[np.unique(mesh.boundary_faces)]
+    off = np.maximum(np.abs(s).max(axis=1) - 1, 0.5 - np.linalg.norm(s, axis=1))
+    assert np.abs(off).max() < 1e-3 * 0.25, np.abs(off).max()
+    try:
+        ctx.client.generate(meshd.request(meshd.polyhedron(corners, outward[:-1]), h0=0.25))
+        raise AssertionError("an open surface was accepted")
+    except meshd.InvalidArgument as e:
+        assert e.field == "volume.geometry.polyhedron.triangles" and "closed" in str(e), e
+    try:
+        meshd.polyhedron(corners, [[0, 1, 8]])
+        raise AssertionError("an index out of range was accepted")
+    except ValueError as e:
+        assert "[0, 8)" in str(e), e
+
+
 def same_rows(a, b):
     """Whether a and b hold the same rows in any order (to 1e-12)."""
     order = lambda x: x[np.lexsort(x.T[::-1])]  # noqa: E731
@@ -285,7 +313,8 @@ def test_pulley_example(ctx):
 
 
 if __name__ == "__main__":
-    sys.exit(main([test_generate, test_distance_grid, test_volume, test_to_meshio, test_snapshots,
+    sys.exit(main([test_generate, test_distance_grid, test_volume, test_polyhedron, test_to_meshio,
+                   test_snapshots,
                    test_submit_watch_jobs, test_aio, test_optional_reporters, test_plate_example,
                    test_pulley_example],
                   "--plate"))

@@ -3,6 +3,7 @@
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <variant>
 
@@ -123,6 +124,47 @@ TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
       "h0", "no tetrahedron of that size fits");
   expect_error("volume { geometry { sphere { radius: 1 } } } h0: 0.001",
                ErrorCode::kResourceExhausted, "h0", "h0 must be at least about");
+}
+
+// The cube [-1, 1]^3 as a polyhedron of 12 triangles, as a request.
+v1::MeshRequest cube_polyhedron_request() {
+  v1::MeshRequest r = parse("h0: 0.25");
+  v1::Polyhedron* p = r.mutable_volume()->mutable_geometry()->mutable_polyhedron();
+  for (int k = 0; k < 8; ++k) {
+    p->add_vertices(k & 1 ? 1 : -1);
+    p->add_vertices(k & 2 ? 1 : -1);
+    p->add_vertices(k & 4 ? 1 : -1);
+  }
+  for (uint32_t v : {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                     2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5})
+    p->add_triangles(v);
+  return r;
+}
+
+TEST(VolumeConversion, PolyhedraAreCheckedAndCounted) {
+  const JobSpec spec = to_job_spec(cube_polyhedron_request());
+  ASSERT_TRUE(spec.volume.has_value());
+  const auto& poly = std::get<Polyhedron>(spec.volume->geometry.node);
+  EXPECT_EQ(poly.vertices.size(), 8u);
+  EXPECT_EQ(poly.triangles.size(), 12u);
+  const std::string p = "volume.geometry.polyhedron";
+
+  v1::MeshRequest r = cube_polyhedron_request();
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->add_vertices(1.0);
+  testing::expect_invalid(r, p + ".vertices", "x, y, z triples (got 25 numbers)");
+  r = cube_polyhedron_request();
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->set_vertices(4, NAN);
+  testing::expect_invalid(r, p + ".vertices[4]", "must be finite");
+  r = cube_polyhedron_request();
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->set_triangles(5, 8);
+  testing::expect_invalid(r, p + ".triangles[5]", "vertex index in [0, 8) (got 8)");
+  r = cube_polyhedron_request();
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->mutable_triangles()->Truncate(33);
+  testing::expect_invalid(r, p + ".triangles", "must be closed");
+  ConversionLimits small;
+  small.max_polyhedron_triangles = 11;
+  testing::expect_error(cube_polyhedron_request(), ErrorCode::kResourceExhausted, p + ".triangles",
+                        "more than 11 triangles", small);
 }
 
 TEST(VolumeConversion, ThePlaneEntryPointRefusesAVolume) {

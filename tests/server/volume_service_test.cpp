@@ -68,6 +68,35 @@ TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
   EXPECT_NEAR(r.done.quality().max_surface_offset(), farthest, 1e-9);
 }
 
+// The same part with its cube given as a closed triangle surface.
+constexpr const char* kPolyhedronMinusBall = R"(
+  volume { geometry { difference {
+    base { name: "box" polyhedron {
+      vertices: [-1, -1, -1, 1, -1, -1, -1, 1, -1, 1, 1, -1, -1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1]
+      triangles: [0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                  2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5] } }
+    subtract { name: "ball" sphere { radius: 0.5 } } } } }
+  h0: 0.2)";
+
+TEST(VolumeService, APolyhedronMeshesAsTheBoxItDescribes) {
+  TestServer server;
+  auto stub = server.stub();
+  const StreamResult box = generate(*stub, parse(kBoxMinusBall));
+  const StreamResult poly = generate(*stub, parse(kPolyhedronMinusBall));
+  ASSERT_TRUE(poly.status.ok()) << poly.status.error_message();
+  ASSERT_TRUE(poly.has_done);
+  const TetMesh mesh = cli::to_tet_mesh(poly.mesh);
+  const TetValidityReport report = check_tet_validity(mesh);
+  EXPECT_TRUE(report.valid()) << (report.problems.empty() ? "" : report.problems[0]);
+  EXPECT_EQ(mesh.boundary_names, (std::vector<std::string>{"box", "ball"}));
+  // The same sharp features, the same volume, the same quality as the box's.
+  EXPECT_EQ(poly.done.stats().fixed_nodes(), box.done.stats().fixed_nodes());
+  EXPECT_NEAR(poly.done.quality().volume(), box.done.quality().volume(), 0.01);
+  EXPECT_GT(poly.done.quality().q_min(), 0.2);
+  EXPECT_GT(poly.done.quality().min_dihedral_deg(), 10.0);
+  EXPECT_LT(poly.done.quality().max_surface_offset(), 1e-3 * 0.2);
+}
+
 TEST(VolumeService, BadVolumesAndTheGpuBackendAreRefused) {
   TestServer server;
   auto stub = server.stub();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry3d/shape3d.h"
@@ -31,6 +32,19 @@ inline Shape3 torus(Vec3 c, double major, double minor, std::string path = "") {
 // The half-space dot(normal, p) <= offset.
 inline Shape3 half_space(Vec3 normal, double offset, std::string path = "") {
   return Shape3{HalfSpace{normal, offset}, "", std::move(path)};
+}
+
+// The cube [lo, hi]^3 as 12 triangles turned outward (inward where `inward`).
+inline Shape3 cube_polyhedron(double lo, double hi, bool inward = false, std::string path = "") {
+  Polyhedron p;
+  for (int k = 0; k < 8; ++k)
+    p.vertices.push_back({k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? hi : lo});
+  // Two triangles per face, counter-clockwise seen from outside.
+  p.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  if (inward)
+    for (auto& t : p.triangles) std::swap(t[1], t[2]);
+  return Shape3{std::move(p), "", std::move(path)};
 }
 
 inline Shape3 csg3(CsgOp op, std::vector<Shape3> operands, std::string path = "") {
