@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/node_estimate3d.h"
 #include "core/geometry3d/bounds3.h"
 #include "core/geometry3d/compile3d.h"
@@ -325,10 +326,13 @@ double check_node_count3(const Problem3& problem, const ConversionLimits& limits
   const Program3 program = compile_geometry3(problem.geometry);
   const Box3 bounds = domain_bounds3(program);
   const Program3View view = program.view();
-  const double low = size_range3(problem.size).low;
+  const SizeRange range = size_range3(problem.size);
+  const double low = range.low;
   const auto size = compile_size_field3(problem.size);
+  // The survey needs the sign, and the depth no deeper than the thickness check looks.
+  const double band = kExactDistanceEdges * problem.h0 * range.high;
   const VolumeSurvey3 survey = survey_volume3d(
-      [view](Vec3 p) { return eval_sdf3(view, p); },
+      [view, band](Vec3 p) { return eval_sdf3(view, p, nullptr, band); },
       size ? [&size, low](Vec3 p) { return size(p) / low; } : std::function<double(Vec3)>{},
       bounds);
   const double volume = survey.weighted_volume;

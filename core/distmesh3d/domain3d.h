@@ -14,7 +14,8 @@
 namespace meshd {
 
 struct Domain3 {
-  // Signed distance, negative inside, in the request's length unit.
+  // Signed distance, negative inside, in the request's length unit: exact near the boundary
+  // (GeometryDomain3's exact band), beyond it perhaps only a bound with the right sign.
   std::function<double(Vec3)> distance;
   // Relative desired edge length h(p) > 0 (DistMesh's fh); empty for a uniform field.
   std::function<double(Vec3)> size;

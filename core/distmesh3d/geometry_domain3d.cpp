@@ -12,7 +12,7 @@
 namespace meshd {
 
 GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size,
-                                 bool sharp_features)
+                                 bool sharp_features, double exact_band)
     : program_(compile_geometry3(shape)) {
   // Primitives that share a name share a boundary group, in the order of first appearance.
   for (const PrimitiveInfo3& info : program_.primitives) {
@@ -22,7 +22,7 @@ GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<d
     if (it == names.end()) names.push_back(info.name);
   }
   const Program3View view = program_.view();
-  domain_.distance = [view](Vec3 p) { return eval_sdf3(view, p); };
+  domain_.distance = [view, exact_band](Vec3 p) { return eval_sdf3(view, p, nullptr, exact_band); };
   domain_.size = std::move(size);
   domain_.boundary_group = [this, view](Vec3 p) {
     int owner = 0;

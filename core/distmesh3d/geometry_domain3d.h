@@ -2,6 +2,7 @@
 // its sharp features as fixed nodes, and its primitives' names as boundary groups.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -12,14 +13,21 @@
 
 namespace meshd {
 
+// How far from the boundary, in the largest edge lengths, the loop needs the distance exact:
+// no node moves, and no pit or sliver search looks, that far in one step.
+constexpr double kExactDistanceEdges = 4.0;
+
 class GeometryDomain3 {
  public:
   // Compiles `shape` (throws Error naming the field for a bad one) and samples its sharp edges
   // about h0 times the size field's smallest value along them apart. size: the relative edge
   // length h(p) > 0, or empty for a uniform field. h0 > 0 in the request's length unit.
   // sharp_features false: no fixed nodes (the sharp edges are rounded at about h0).
+  // exact_band: the distance is exact within it of the boundary and at least it beyond (with
+  // the right sign), which spares a polyhedron's far points most of its triangles; infinite:
+  // exact everywhere.
   GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size = {},
-                  bool sharp_features = true);
+                  bool sharp_features = true, double exact_band = INFINITY);
   // The domain's callables point into this object.
   GeometryDomain3(const GeometryDomain3&) = delete;
   GeometryDomain3& operator=(const GeometryDomain3&) = delete;

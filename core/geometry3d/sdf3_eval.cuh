@@ -122,7 +122,9 @@ MESHD_HD inline double sdf3_revolution(const double* q, const ProgramView* profi
   return s * eval_sdf(profiles[static_cast<int>(q[10])], Vec2{a.radial / s, a.axial / s});
 }
 
-MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins, Vec3 p) {
+// cap: the distance a polyhedron need not know beyond (sdf3_surface).
+MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins, Vec3 p,
+                                      double cap) {
   const double* q = prog.params + ins.operand;
   switch (ins.op) {
     case Op3::kSphere:
@@ -142,7 +144,7 @@ MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins
     case Op3::kRevolution:
       return sdf3_revolution(q, prog.profiles, p);
     case Op3::kPolyhedron:
-      return sdf3_surface(prog.surfaces[static_cast<int>(q[6])], p);
+      return sdf3_surface(prog.surfaces[static_cast<int>(q[6])], p, cap);
     default:
       return NAN;
   }
@@ -157,8 +159,11 @@ MESHD_HD inline double sdf3_primitive(Program3View prog, const Instruction3& ins
 #endif
 // Signed distance of the whole program at p. When `owner` is not null it receives the index of
 // the primitive whose distance the result is (the boundary it is nearest to), which tags
-// boundary faces with their group.
-MESHD_HD inline double eval_sdf3(Program3View prog, Vec3 p, int* owner = nullptr) {
+// boundary faces with their group. With a finite `cap` the result is exact where its magnitude
+// is under cap, and at least cap (with the right sign) elsewhere: a polyhedron then answers
+// +-cap far from its surface, and clamping commutes with min, max and negation.
+MESHD_HD inline double eval_sdf3(Program3View prog, Vec3 p, int* owner = nullptr,
+                                 double cap = INFINITY) {
   double value[kMaxProgram3Stack];
   int who[kMaxProgram3Stack];
   int top = -1;
@@ -184,7 +189,7 @@ MESHD_HD inline double eval_sdf3(Program3View prog, Vec3 p, int* owner = nullptr
         break;
       default:
         ++top;
-        value[top] = sdf3_primitive(prog, ins, p);
+        value[top] = sdf3_primitive(prog, ins, p, cap);
         who[top] = ins.primitive;
         break;
     }

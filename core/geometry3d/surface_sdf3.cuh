@@ -48,15 +48,81 @@ MESHD_HD inline Nearest nearest_on_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
   return {a + (vb * denom) * ab + (vc * denom) * ac, kOnFace};
 }
 
+// Whether the ray from p along kRay crosses the triangle abc (Moller and Trumbore), at t > 0.
+MESHD_HD inline bool ray_crosses(Vec3 p, Vec3 dir, Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 e1 = b - a, e2 = c - a, h = cross(dir, e2);
+  const double det = dot(e1, h);
+  if (det == 0.0) return false;
+  const double inv = 1.0 / det;
+  const Vec3 s = p - a;
+  const double u = dot(s, h) * inv;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 q = cross(s, e1);
+  const double v = dot(dir, q) * inv;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return dot(e2, q) * inv > 0.0;
+}
+
+// Whether the ray from p along dir (no zero component) meets the box.
+MESHD_HD inline bool ray_meets_box(Vec3 p, Vec3 inv_dir, const Box3& b) {
+  double t0 = 0.0, t1 = INFINITY;
+  const double lo[3] = {b.min.x, b.min.y, b.min.z}, hi[3] = {b.max.x, b.max.y, b.max.z};
+  const double o[3] = {p.x, p.y, p.z}, inv[3] = {inv_dir.x, inv_dir.y, inv_dir.z};
+  for (int k = 0; k < 3; ++k) {
+    double near = (lo[k] - o[k]) * inv[k], far = (hi[k] - o[k]) * inv[k];
+    if (near > far) {
+      const double t = near;
+      near = far;
+      far = t;
+    }
+    t0 = near > t0 ? near : t0;
+    t1 = far < t1 ? far : t1;
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Inside by the parity of a ray's crossings: for points farther than any triangle worth finding,
+// whose nearest triangle would cost a visit of most of them. The ray's direction leans on no
+// axis and no simple lattice direction, so it meets an edge or a vertex of a modelled surface
+// almost never (and such a point is far from the surface, where a miscounted sign only costs a
+// node a projection).
+MESHD_HD inline bool inside_by_ray(const TriangleSurface3View& s, Vec3 p) {
+  const Vec3 dir{0.5773502691896258 + 0.0131, 0.5773502691896258 - 0.0217,
+                 0.5773502691896258 + 0.0071};
+  const Vec3 inv{1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z};
+  uint32_t stack[kMaxSurfaceBvhDepth + 1];
+  int top = 0;
+  stack[0] = s.root;
+  bool inside = false;
+  while (top >= 0) {
+    const SurfaceBvhNode& node = s.nodes[stack[top--]];
+    if (!ray_meets_box(p, inv, node.box)) continue;
+    if (!node.leaf) {
+      stack[++top] = node.first;
+      stack[++top] = node.last;
+      continue;
+    }
+    for (uint32_t t = node.first; t < node.last; ++t) {
+      const int32_t* v = s.triangles + 3 * t;
+      if (ray_crosses(p, dir, s.vertices[v[0]], s.vertices[v[1]], s.vertices[v[2]]))
+        inside = !inside;
+    }
+  }
+  return inside;
+}
+
 }  // namespace surface_detail
 
-// Signed distance from p to the surface, negative inside.
-MESHD_HD inline double sdf3_surface(const TriangleSurface3View& s, Vec3 p) {
+// Signed distance from p to the surface, negative inside; where no triangle lies within `cap`,
+// +-cap (the sign from a ray), which spares points deep inside a visit of most triangles (at a
+// ball's centre all are equally far).
+MESHD_HD inline double sdf3_surface(const TriangleSurface3View& s, Vec3 p, double cap = INFINITY) {
   using namespace surface_detail;
   uint32_t stack[kMaxSurfaceBvhDepth + 1];
   int top = 0;
   stack[0] = s.root;
-  double best = INFINITY;
+  double best = cap * cap;
   Vec3 best_point{};
   Vec3 best_normal{};
   while (top >= 0) {
@@ -83,6 +149,7 @@ MESHD_HD inline double sdf3_surface(const TriangleSurface3View& s, Vec3 p) {
                                           : s.vertex_normals[v[n.region - kOnA]];
     }
   }
+  if (!(best < cap * cap)) return inside_by_ray(s, p) ? -cap : cap;
   const double d = sqrt(best);
   return dot(p - best_point, best_normal) < 0.0 ? -d : d;
 }

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "core/common/error.h"
+#include "core/common/vec2.h"
 #include "core/geometry3d/compile3d.h"
 #include "core/geometry3d/sdf3_eval.cuh"
 #include "core/geometry3d/sharp_features3.h"
@@ -88,6 +89,38 @@ TEST(TriangleSurface3, TheTreeFindsTheNearestTriangleAsVisitingAllDoes) {
       EXPECT_GT(d, 0.0);
     }
   }
+}
+
+TEST(TriangleSurface3, ACapKeepsTheDistanceNearTheSurfaceAndTheSignBeyond) {
+  // An L-shaped prism, not convex, so that a ray from inside may cross it three times.
+  Polyhedron l;
+  const Vec2 outline[6] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  for (double z : {0.0, 1.0})
+    for (Vec2 q : outline) l.vertices.push_back({q.x, q.y, z});
+  // The bottom (fan from 0, seen from below) and the top, and two triangles per side.
+  for (int k = 1; k + 1 < 6; ++k) {
+    l.triangles.push_back({0, k + 1, k});
+    l.triangles.push_back({6, 6 + k, 6 + k + 1});
+  }
+  for (int k = 0; k < 6; ++k) {
+    const int a = k, b = (k + 1) % 6;
+    l.triangles.push_back({a, b, 6 + b});
+    l.triangles.push_back({a, 6 + b, 6 + a});
+  }
+  const TriangleSurface3 s = build_triangle_surface3(l.vertices, l.triangles, "poly");
+  for (Vec3 p : random_points(3000, 3.0, 5)) {
+    const double exact = sdf3_surface(s.view(), p);
+    const double capped = sdf3_surface(s.view(), p, 0.2);
+    if (std::fabs(exact) < 0.2) {
+      EXPECT_EQ(capped, exact);
+    } else {
+      EXPECT_EQ(capped, exact < 0 ? -0.2 : 0.2) << p.x << " " << p.y << " " << p.z;
+    }
+  }
+  // The program passes its cap down: the cube of triangles deep inside.
+  const Program3 cube = compile_geometry3(cube_polyhedron(-1, 1));
+  EXPECT_EQ(eval_sdf3(cube.view(), {0.1, 0.2, 0.3}, nullptr, 0.25), -0.25);
+  EXPECT_DOUBLE_EQ(eval_sdf3(cube.view(), {0.1, 0.2, 0.9}, nullptr, 0.25), -0.1);
 }
 
 TEST(TriangleSurface3, TransformsMoveTheSurface) {
