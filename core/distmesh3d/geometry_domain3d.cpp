@@ -6,6 +6,7 @@
 
 #include "core/geometry3d/bounds3.h"
 #include "core/geometry3d/compile3d.h"
+#include "core/geometry3d/crease_features3.h"
 #include "core/geometry3d/sdf3_eval.cuh"
 #include "core/geometry3d/sharp_features3.h"
 
@@ -41,6 +42,9 @@ GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<d
     if (std::isfinite(h_min)) spacing = h0 * h_min;
   }
   domain_.fixed = sharp_features3(program_, spacing);
+  const std::vector<Vec3> creases =
+      crease_features3(program_, domain_.bounds, spacing, domain_.fixed);
+  domain_.fixed.insert(domain_.fixed.end(), creases.begin(), creases.end());
 }
 
 }  // namespace meshd

@@ -8,8 +8,8 @@
 // profile, a revolution's rim at each corner of its profile (an apex on the axis), a polyhedron's
 // edges where its faces meet at more than kSharpSurfaceAngleDeg (in chains), sampled along
 // each edge and kept where they lie on the final domain's boundary. Edges that CSG creates where
-// two primitives' surfaces meet (a sphere cutting a cuboid's face, two cylinders crossing) are not
-// found yet: the mesh rounds them off by about the local edge length.
+// two primitives' surfaces meet (a sphere cutting a cuboid's face, two cylinders crossing) are
+// crease_features3.h's.
 #pragma once
 
 #include <cstddef>
