@@ -4,52 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <unordered_map>
 
 #include "core/geometry3d/sdf3_eval.cuh"
+#include "core/geometry3d/spaced_points3.h"
 
 namespace meshd {
 namespace {
 
 constexpr int kNewtonSteps = 12;
-
-// Points no two of which lie within `gap`: a hash grid of cells `gap` wide.
-class SpacedPoints {
- public:
-  explicit SpacedPoints(double gap) : gap_(gap) {}
-
-  bool free(Vec3 p) const {
-    const Key c = key(p);
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == cells_.end()) continue;
-          for (Vec3 q : it->second)
-            if (norm(q - p) < gap_) return false;
-        }
-    return true;
-  }
-  void add(Vec3 p) { cells_[key(p)].push_back(p); }
-
- private:
-  struct Key {
-    int64_t x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct KeyHash {
-    size_t operator()(const Key& k) const {
-      return static_cast<size_t>(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
-    }
-  };
-  Key key(Vec3 p) const {
-    return {static_cast<int64_t>(std::floor(p.x / gap_)),
-            static_cast<int64_t>(std::floor(p.y / gap_)),
-            static_cast<int64_t>(std::floor(p.z / gap_))};
-  }
-  double gap_;
-  std::unordered_map<Key, std::vector<Vec3>, KeyHash> cells_;
-};
 
 class CreaseFinder {
  public:
@@ -134,7 +96,7 @@ std::vector<Vec3> crease_features3(const Program3& program, const Box3& bounds, 
         if (std::fabs(d) < cell) owner[(z * ny + y) * nx + x] = who;
       }
 
-  SpacedPoints kept(kCreaseGapFraction * spacing);
+  SpacedPoints3 kept(kCreaseGapFraction * spacing);
   for (Vec3 p : existing) kept.add(p);
   const double on_boundary = 1e-9 * spacing;
   const auto consider = [&](int a, int b, Vec3 pa, Vec3 pb) {
@@ -144,7 +106,7 @@ std::vector<Vec3> crease_features3(const Program3& program, const Box3& bounds, 
     int who = -1;
     const double size = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
     if (!(std::fabs(finder.whole(p, &who)) <= on_boundary + 1e-12 * size)) return;
-    if (!kept.free(p)) return;
+    if (kept.near(p)) return;
     kept.add(p);
     out.push_back(p);
   };

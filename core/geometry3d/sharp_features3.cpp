@@ -13,6 +13,7 @@
 #include "core/geometry/boundary_samples.h"
 #include "core/geometry/sdf_eval.cuh"
 #include "core/geometry3d/sdf3_eval.cuh"
+#include "core/geometry3d/spaced_points3.h"
 
 namespace meshd {
 namespace {
@@ -26,47 +27,6 @@ constexpr double kOnBoundaryFraction = 1e-9;
 constexpr double kRoundingFraction = 1e-12;
 
 Vec3 load(const double* q) { return {q[0], q[1], q[2]}; }
-
-// Keeps the first of points within `tol` of each other, in a hash grid of cells `tol` wide.
-// Cell coordinates stay doubles: coordinates up to 1e150 over a tiny tolerance overflow any
-// integer type.
-class DistinctPoints3 {
- public:
-  DistinctPoints3(std::vector<Vec3>& points, double tol) : points_(points), tol_(tol) {}
-
-  void add(Vec3 p) {
-    const Cell c = cell(p);
-    for (double dx = -1; dx <= 1; ++dx)
-      for (double dy = -1; dy <= 1; ++dy)
-        for (double dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find({c.x + dx, c.y + dy, c.z + dz});
-          if (it == cells_.end()) continue;
-          for (size_t i : it->second)
-            if (norm(points_[i] - p) <= tol_) return;
-        }
-    cells_[c].push_back(points_.size());
-    points_.push_back(p);
-  }
-
- private:
-  struct Cell {
-    double x, y, z;
-    bool operator==(const Cell&) const = default;
-  };
-  struct CellHash {
-    size_t operator()(const Cell& c) const {
-      const std::hash<double> h;
-      return h(c.x) ^ (h(c.y) * 0x9e3779b97f4a7c15ull) ^ (h(c.z) * 0xc2b2ae3d27d4eb4full);
-    }
-  };
-  Cell cell(Vec3 p) const {
-    return {std::floor(p.x / tol_), std::floor(p.y / tol_), std::floor(p.z / tol_)};
-  }
-
-  std::vector<Vec3>& points_;
-  double tol_;
-  std::unordered_map<Cell, std::vector<size_t>, CellHash> cells_;
-};
 
 // Collects one primitive's candidate points, counting them against the limit before any is made.
 class Sampler {
@@ -299,12 +259,15 @@ std::vector<Vec3> sharp_features3(const Program3& program, double spacing) {
   }
 
   std::vector<Vec3> out;
-  DistinctPoints3 distinct(out, kMergeFraction * spacing);
+  SpacedPoints3 kept(kMergeFraction * spacing);
   const Program3View view = program.view();
   for (Vec3 p : candidates) {
     const double size = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
     const double tol = kOnBoundaryFraction * spacing + kRoundingFraction * size;
-    if (std::fabs(eval_sdf3(view, p)) <= tol) distinct.add(p);
+    if (std::fabs(eval_sdf3(view, p)) <= tol && !kept.near(p)) {
+      kept.add(p);
+      out.push_back(p);
+    }
   }
   return out;
 }
