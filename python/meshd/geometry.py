@@ -24,24 +24,26 @@ def _vec2(xy, what):
     return geometry_pb2.Vec2(x=x, y=y)
 
 
-class Shape:
-    """One node of the geometry tree. `proto` is a meshd.v1.Shape (a copy: changing it leaves
-    this shape alone)."""
+class TreeNode:
+    """What a node of either geometry tree is (Shape in the plane, meshd.Solid in space): an
+    immutable wrapper of its proto message, of type MESSAGE. `proto` is a copy: changing it leaves
+    the node alone."""
 
     __slots__ = ("_proto",)
+    MESSAGE = None
 
     def __init__(self, proto):
         self._proto = proto
 
     @property
     def proto(self):
-        copy = geometry_pb2.Shape()
+        copy = self.MESSAGE()
         copy.CopyFrom(self._proto)
         return copy
 
     @property
     def kind(self):
-        """Which of the proto's kinds this node is: "circle", "union", "translate", ..."""
+        """Which of the proto's kinds this node is: "circle", "sphere", "union", ..."""
         return self._proto.WhichOneof("kind")
 
     @property
@@ -49,11 +51,51 @@ class Shape:
         return self._proto.name
 
     def named(self, name):
-        """This shape with a boundary-group name: the primitives at or below it that have no
-        name of their own put their boundary edges in group `name`."""
+        """This node with a boundary-group name: the primitives at or below it that have no name
+        of their own put their boundary in group `name`."""
         proto = self.proto
         proto.name = name
-        return Shape(proto)
+        return type(self)(proto)
+
+    def _wrapped(self, kind, fill):
+        """A new node of `kind` (a transform) over this one; fill(node) sets its parameters."""
+        proto = self.MESSAGE()
+        node = getattr(proto, kind)
+        fill(node)
+        node.shape.CopyFrom(self._proto)
+        return type(self)(proto)
+
+    def __repr__(self):
+        from google.protobuf import text_format
+        text = text_format.MessageToString(self._proto, as_one_line=True)
+        return f"meshd.{type(self).__name__}({text})"
+
+
+def as_node_proto(node, cls):
+    """A copy of the proto of `node`, a `cls` (a TreeNode class) or its MESSAGE."""
+    if isinstance(node, cls):
+        return node.proto
+    if isinstance(node, cls.MESSAGE):
+        copy = cls.MESSAGE()
+        copy.CopyFrom(node)
+        return copy
+    raise TypeError(f"expected a meshd.{cls.__name__}, got {type(node).__name__}")
+
+
+def primitive_node(cls, kind, name, fill):
+    """A `cls` whose proto is the primitive `kind`; fill(primitive) sets its parameters."""
+    proto = cls.MESSAGE()
+    if name:
+        proto.name = name
+    fill(getattr(proto, kind))
+    return cls(proto)
+
+
+class Shape(TreeNode):
+    """One node of the plane geometry tree, a meshd.v1.Shape."""
+
+    __slots__ = ()
+    MESSAGE = geometry_pb2.Shape
 
     # ---- operations ---------------------------------------------------------------------------
 
@@ -70,49 +112,31 @@ class Shape:
 
     def translate(self, offset):
         """This shape moved by offset (dx, dy)."""
-        proto = geometry_pb2.Shape()
-        proto.translate.offset.CopyFrom(_vec2(offset, "offset"))
-        proto.translate.shape.CopyFrom(self._proto)
-        return Shape(proto)
+        return self._wrapped("translate",
+                             lambda t: t.offset.CopyFrom(_vec2(offset, "offset")))
 
     def rotate(self, angle_deg, center=(0.0, 0.0)):
         """This shape turned counter-clockwise by angle_deg degrees about center."""
-        proto = geometry_pb2.Shape()
-        proto.rotate.angle_deg = float(angle_deg)
-        proto.rotate.center.CopyFrom(_vec2(center, "center"))
-        proto.rotate.shape.CopyFrom(self._proto)
-        return Shape(proto)
+        def fill(r):
+            r.angle_deg = float(angle_deg)
+            r.center.CopyFrom(_vec2(center, "center"))
+        return self._wrapped("rotate", fill)
 
     def scale(self, factor, center=(0.0, 0.0)):
         """This shape scaled by factor (> 0) about center."""
-        proto = geometry_pb2.Shape()
-        proto.scale.factor = float(factor)
-        proto.scale.center.CopyFrom(_vec2(center, "center"))
-        proto.scale.shape.CopyFrom(self._proto)
-        return Shape(proto)
-
-    def __repr__(self):
-        from google.protobuf import text_format
-        return f"meshd.Shape({text_format.MessageToString(self._proto, as_one_line=True)})"
+        def fill(s):
+            s.factor = float(factor)
+            s.center.CopyFrom(_vec2(center, "center"))
+        return self._wrapped("scale", fill)
 
 
 def as_shape_proto(shape):
     """A meshd.v1.Shape from a Shape or a meshd.v1.Shape message (copied)."""
-    if isinstance(shape, Shape):
-        return shape.proto
-    if isinstance(shape, geometry_pb2.Shape):
-        copy = geometry_pb2.Shape()
-        copy.CopyFrom(shape)
-        return copy
-    raise TypeError(f"expected a meshd.Shape, got {type(shape).__name__}")
+    return as_node_proto(shape, Shape)
 
 
 def _primitive(kind, name, fill):
-    proto = geometry_pb2.Shape()
-    if name:
-        proto.name = name
-    fill(getattr(proto, kind))
-    return Shape(proto)
+    return primitive_node(Shape, kind, name, fill)
 
 
 # ---- primitives -------------------------------------------------------------------------------

@@ -12,7 +12,8 @@ meshd.v1.Shape3 message the server reads in a volume request.
 Lengths are in the request's length unit, angles in degrees. Solids are immutable.
 """
 
-from meshd.geometry import as_shape_proto, difference_node, nary_node
+from meshd.geometry import (TreeNode, as_node_proto, as_shape_proto, difference_node,
+                            nary_node, primitive_node)
 from meshd.v1 import geometry3d_pb2
 
 
@@ -25,34 +26,11 @@ def _vec3(xyz, what):
     return geometry3d_pb2.Vec3(x=x, y=y, z=z)
 
 
-class Solid:
-    """One node of the 3D geometry tree. `proto` is a meshd.v1.Shape3 (a copy)."""
+class Solid(TreeNode):
+    """One node of the 3D geometry tree, a meshd.v1.Shape3."""
 
-    __slots__ = ("_proto",)
-
-    def __init__(self, proto):
-        self._proto = proto
-
-    @property
-    def proto(self):
-        copy = geometry3d_pb2.Shape3()
-        copy.CopyFrom(self._proto)
-        return copy
-
-    @property
-    def kind(self):
-        """Which of the proto's kinds this node is: "sphere", "box", "extrusion", ..."""
-        return self._proto.WhichOneof("kind")
-
-    @property
-    def name(self):
-        return self._proto.name
-
-    def named(self, name):
-        """This solid with a boundary-group name for its unnamed primitives' faces."""
-        proto = self.proto
-        proto.name = name
-        return Solid(proto)
+    __slots__ = ()
+    MESSAGE = geometry3d_pb2.Shape3
 
     def __or__(self, other):
         return union(self, other)
@@ -65,51 +43,33 @@ class Solid:
 
     def translate(self, offset):
         """This solid moved by offset (dx, dy, dz)."""
-        proto = geometry3d_pb2.Shape3()
-        proto.translate.offset.CopyFrom(_vec3(offset, "offset"))
-        proto.translate.shape.CopyFrom(self._proto)
-        return Solid(proto)
+        return self._wrapped("translate",
+                             lambda t: t.offset.CopyFrom(_vec3(offset, "offset")))
 
     def rotate(self, angle_deg, axis=(0.0, 0.0, 1.0), center=(0.0, 0.0, 0.0)):
         """This solid turned by angle_deg degrees (right-handed) about the line through center
         along axis."""
-        proto = geometry3d_pb2.Shape3()
-        proto.rotate.angle_deg = float(angle_deg)
-        proto.rotate.axis.CopyFrom(_vec3(axis, "axis"))
-        proto.rotate.center.CopyFrom(_vec3(center, "center"))
-        proto.rotate.shape.CopyFrom(self._proto)
-        return Solid(proto)
+        def fill(r):
+            r.angle_deg = float(angle_deg)
+            r.axis.CopyFrom(_vec3(axis, "axis"))
+            r.center.CopyFrom(_vec3(center, "center"))
+        return self._wrapped("rotate", fill)
 
     def scale(self, factor, center=(0.0, 0.0, 0.0)):
         """This solid scaled by factor (> 0) about center."""
-        proto = geometry3d_pb2.Shape3()
-        proto.scale.factor = float(factor)
-        proto.scale.center.CopyFrom(_vec3(center, "center"))
-        proto.scale.shape.CopyFrom(self._proto)
-        return Solid(proto)
-
-    def __repr__(self):
-        from google.protobuf import text_format
-        return f"meshd.Solid({text_format.MessageToString(self._proto, as_one_line=True)})"
+        def fill(s):
+            s.factor = float(factor)
+            s.center.CopyFrom(_vec3(center, "center"))
+        return self._wrapped("scale", fill)
 
 
 def as_solid_proto(solid):
     """A meshd.v1.Shape3 from a Solid or a meshd.v1.Shape3 message (copied)."""
-    if isinstance(solid, Solid):
-        return solid.proto
-    if isinstance(solid, geometry3d_pb2.Shape3):
-        copy = geometry3d_pb2.Shape3()
-        copy.CopyFrom(solid)
-        return copy
-    raise TypeError(f"expected a meshd.Solid, got {type(solid).__name__}")
+    return as_node_proto(solid, Solid)
 
 
 def _primitive(kind, name, fill):
-    proto = geometry3d_pb2.Shape3()
-    if name:
-        proto.name = name
-    fill(getattr(proto, kind))
-    return Solid(proto)
+    return primitive_node(Solid, kind, name, fill)
 
 
 # ---- primitives -------------------------------------------------------------------------------
