@@ -37,7 +37,7 @@ MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer*
   out.mesh = assemble_mesh3d(geometry.domain(), std::move(relaxed));
   out.quality = summarize_tet_quality(out.mesh);
   out.quality.max_surface_offset =
-      surface_offset3d(geometry.domain(), out.mesh.points, out.mesh.tets, 0.0).max;
+      surface_offset3d(geometry.domain(), out.mesh.points, out.mesh.boundary_faces, 0.0).max;
   out.stats.t_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -8,9 +8,10 @@
 namespace meshd {
 
 SurfaceOffset3 surface_offset3d(const Domain3& domain, const std::vector<Vec3>& points,
-                                const std::vector<std::array<int32_t, 4>>& tets, double tolerance) {
+                                const std::vector<std::array<int32_t, 3>>& boundary_faces,
+                                double tolerance) {
   std::vector<char> on_surface(points.size(), 0);
-  for (const auto& f : tet_boundary_faces(tets))
+  for (const auto& f : boundary_faces)
     for (int32_t v : f) on_surface[v] = 1;
   SurfaceOffset3 out;
   for (size_t v = 0; v < points.size(); ++v) {
@@ -21,6 +22,11 @@ SurfaceOffset3 surface_offset3d(const Domain3& domain, const std::vector<Vec3>& 
     if (offset > tolerance) ++out.beyond;
   }
   return out;
+}
+
+SurfaceOffset3 surface_offset3d(const Domain3& domain, const std::vector<Vec3>& points,
+                                const std::vector<std::array<int32_t, 4>>& tets, double tolerance) {
+  return surface_offset3d(domain, points, tet_boundary_faces(tets), tolerance);
 }
 
 }  // namespace meshd

@@ -17,8 +17,13 @@ struct SurfaceOffset3 {
   int64_t surface = 0;  // nodes of the mesh's boundary faces
 };
 
-// Over the nodes of the faces that one tetrahedron alone uses. points: #N by 3; tets: #M by 4
-// indices in [0, #N) (not checked); tolerance >= 0 in the request's length unit.
+// Over the nodes of `boundary_faces` (#F by 3 indices in [0, #N), not checked). points: #N by 3;
+// tolerance >= 0 in the request's length unit.
+SurfaceOffset3 surface_offset3d(const Domain3& domain, const std::vector<Vec3>& points,
+                                const std::vector<std::array<int32_t, 3>>& boundary_faces,
+                                double tolerance);
+// The same over the faces that one tetrahedron alone uses (tet_boundary_faces), for arrays not
+// yet assembled into a TetMesh.
 SurfaceOffset3 surface_offset3d(const Domain3& domain, const std::vector<Vec3>& points,
                                 const std::vector<std::array<int32_t, 4>>& tets, double tolerance);
 
