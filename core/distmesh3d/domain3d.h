@@ -5,6 +5,7 @@
 // compiled 3D geometry (core/geometry3d/) or a test's own function.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "core/common/vec3.h"
 
 namespace meshd {
+
+struct Program3;
+struct CompiledSizeField3;
 
 struct Domain3 {
   // Signed distance, negative inside, in the request's length unit: exact near the boundary
@@ -27,6 +31,13 @@ struct Domain3 {
   // group named "boundary".
   std::function<int(Vec3)> boundary_group;
   std::vector<std::string> boundary_names;
+
+  // The compiled forms of `distance` and `size`, for an engine that evaluates them itself (the
+  // GPU's): distance = eval_sdf3(program, p, nullptr, exact_band), size = eval_size3(size_field)
+  // where `size` is set. Null for a test's own callables, which only the CPU engine runs.
+  const Program3* program = nullptr;
+  double exact_band = INFINITY;
+  const CompiledSizeField3* size_field = nullptr;
 };
 
 }  // namespace meshd

@@ -24,6 +24,8 @@ GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<d
   }
   const Program3View view = program_.view();
   domain_.distance = [view, exact_band](Vec3 p) { return eval_sdf3(view, p, nullptr, exact_band); };
+  domain_.program = &program_;
+  domain_.exact_band = exact_band;
   domain_.size = std::move(size);
   domain_.boundary_group = [this, view](Vec3 p) {
     int owner = 0;
@@ -45,6 +47,14 @@ GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0, std::function<d
   const std::vector<Vec3> creases =
       crease_features3(program_, domain_.bounds, spacing, domain_.fixed);
   domain_.fixed.insert(domain_.fixed.end(), creases.begin(), creases.end());
+}
+
+GeometryDomain3::GeometryDomain3(const Shape3& shape, double h0,
+                                 std::shared_ptr<const CompiledSizeField3> size_field, bool uniform,
+                                 bool sharp_features, double exact_band)
+    : GeometryDomain3(shape, h0, size_callable3(size_field, uniform), sharp_features, exact_band) {
+  size_field_ = std::move(size_field);
+  if (!uniform) domain_.size_field = size_field_.get();
 }
 
 }  // namespace meshd

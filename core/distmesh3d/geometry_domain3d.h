@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/distmesh3d/domain3d.h"
 #include "core/geometry3d/program3d.h"
 #include "core/geometry3d/shape3d.h"
+#include "core/geometry3d/size_field3.h"
 
 namespace meshd {
 
@@ -28,6 +30,11 @@ class GeometryDomain3 {
   // exact everywhere.
   GeometryDomain3(const Shape3& shape, double h0, std::function<double(Vec3)> size = {},
                   bool sharp_features = true, double exact_band = INFINITY);
+  // The same with a compiled size field (kept alive here), which a GPU engine can evaluate;
+  // `uniform`: the field has no terms (h = 1).
+  GeometryDomain3(const Shape3& shape, double h0,
+                  std::shared_ptr<const CompiledSizeField3> size_field, bool uniform,
+                  bool sharp_features, double exact_band);
   // The domain's callables point into this object.
   GeometryDomain3(const GeometryDomain3&) = delete;
   GeometryDomain3& operator=(const GeometryDomain3&) = delete;
@@ -37,6 +44,7 @@ class GeometryDomain3 {
 
  private:
   Program3 program_;
+  std::shared_ptr<const CompiledSizeField3> size_field_;
   std::vector<int> group_of_primitive_;  // #P: index into domain_.boundary_names
   Domain3 domain_;
 };

@@ -6,22 +6,19 @@
 
 #include "core/common/vec3.h"
 #include "core/distmesh3d/domain3d.h"
+#include "core/geometry3d/gradient3.cuh"
 
 namespace meshd {
 
 // Forward-difference gradient of the distance at p, where it is d; step > 0 absolute
 // (distmeshnd's deps h0).
 inline Vec3 distance_gradient3d(const Domain3& domain, Vec3 p, double d, double step) {
-  return {(domain.distance({p.x + step, p.y, p.z}) - d) / step,
-          (domain.distance({p.x, p.y + step, p.z}) - d) / step,
-          (domain.distance({p.x, p.y, p.z + step}) - d) / step};
+  return distance_gradient3(domain.distance, p, d, step);
 }
 
 // One Newton step towards the zero level set: p - d grad / |grad|^2, with distance d at p.
 inline Vec3 project_step3d(const Domain3& domain, Vec3 p, double d, double step) {
-  const Vec3 g = distance_gradient3d(domain, p, d, step);
-  const double g2 = dot(g, g);
-  return g2 > 0.0 ? p - (d / g2) * g : p;
+  return project_step3(domain.distance, p, d, step);
 }
 
 // Eight unit directions in the boundary's tangent plane at p (about the distance's gradient),

@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "core/geometry3d/compile3d.h"
-#include "core/geometry3d/sdf3_eval.cuh"
 
 namespace meshd {
 
@@ -22,36 +21,31 @@ SizeRange size_range3(const SizeField3& field) {
   return out;
 }
 
-namespace {
-
-// One distance term, its program kept alive by the callable's shared state.
-struct CompiledDistanceSize3 {
-  Program3 program;
-  double h_min, slope, h_max;
-};
-
-}  // namespace
-
-std::function<double(Vec3)> compile_size_field3(const SizeField3& field) {
-  if (field.terms.empty()) return {};
-  double uniform = INFINITY;
-  auto terms = std::make_shared<std::vector<CompiledDistanceSize3>>();
+std::shared_ptr<const CompiledSizeField3> compile_size_field3(const SizeField3& field,
+                                                              double divisor) {
+  auto out = std::make_shared<CompiledSizeField3>();
+  out->divisor = divisor;
   for (const SizeTerm3& term : field.terms) {
     if (const auto* u = std::get_if<UniformSize>(&term)) {
-      uniform = std::min(uniform, u->value);
+      out->uniform = std::min(out->uniform, u->value);
       continue;
     }
     const auto& d = std::get<DistanceSize3>(term);
-    terms->push_back({compile_geometry3(d.shape), d.h_min, d.slope, d.h_max});
+    out->terms.push_back({compile_geometry3(d.shape), d.h_min, d.slope, d.h_max});
   }
-  return [terms, uniform](Vec3 p) {
-    double h = uniform;
-    for (const CompiledDistanceSize3& t : *terms) {
-      const double d = std::abs(eval_sdf3(t.program.view(), p));
-      h = std::min(h, std::min(t.h_max, t.h_min + t.slope * d));
-    }
-    return h;
-  };
+  for (const auto& t : out->terms)
+    out->views.push_back({t.program.view(), t.h_min, t.slope, t.h_max});
+  return out;
+}
+
+std::function<double(Vec3)> size_callable3(std::shared_ptr<const CompiledSizeField3> field,
+                                           bool uniform) {
+  if (uniform) return {};
+  return [field = std::move(field)](Vec3 p) { return eval_size3(field->view(), p); };
+}
+
+std::function<double(Vec3)> compile_size_field3(const SizeField3& field) {
+  return size_callable3(compile_size_field3(field, 1.0), field.terms.empty());
 }
 
 }  // namespace meshd
