@@ -8,7 +8,7 @@ fuzz_packages=(clang-14 libclang-rt-14-dev)
 packages=(
   build-essential cmake ninja-build pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libcgal-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev prometheus-cpp-dev libssl-dev
+  libcgal-dev libtbb-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev prometheus-cpp-dev libssl-dev
   python3 python3-meshio python3-grpcio python3-protobuf gmsh openssl valgrind
   python3-numpy python3-venv python3-setuptools python3-wheel
   libgdal-dev gdal-bin python3-gdal

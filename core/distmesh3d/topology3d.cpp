@@ -13,7 +13,15 @@ constexpr size_t kChunk = 4096;
 
 Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
                         double depth, double coincidence, ThreadPool* pool) {
-  const std::vector<std::array<int32_t, 4>> all = delaunay_tetrahedralize(points);
+  return topology_of3d(domain, points, delaunay_tetrahedralize(points, pool_threads(pool)), fixed,
+                       depth, coincidence, pool);
+}
+
+unsigned pool_threads(ThreadPool* pool) { return pool != nullptr ? pool->size() : 1; }
+
+Topology3 topology_of3d(const Domain3& domain, const std::vector<Vec3>& points,
+                        const std::vector<std::array<int32_t, 4>>& all, int64_t fixed, double depth,
+                        double coincidence, ThreadPool* pool) {
   Topology3 topology;
   topology.tets = gather_chunks<std::array<int32_t, 4>>(
       pool, all.size(), kChunk, [&](size_t begin, size_t end, auto& kept) {
@@ -23,7 +31,7 @@ Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, 
           if (domain.distance(centroid) < -depth) kept.push_back(v);
         }
       });
-  build_bars3d(topology, static_cast<int64_t>(points.size()));
+  build_bars3d(topology, static_cast<int64_t>(points.size()), pool);
   // Coincident nodes share an edge of the whole triangulation, kept or not.
   auto& close = topology.coincident;
   close =
@@ -41,9 +49,10 @@ Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, 
   return topology;
 }
 
-void build_bars3d(Topology3& topology, int64_t nodes) {
-  // Each edge in the bucket of its lower end, each bucket sorted and made unique: the global
-  // sort's order without its cost (a sort of all 6 M edges took a sixth of a 28k-node run).
+void build_bars3d(Topology3& topology, int64_t nodes, ThreadPool* pool) {
+  // Each edge in the bucket of its lower end, each bucket sorted and made unique (on the pool's
+  // threads): the global sort's order without its cost (a sort of all 6 M edges took a sixth of
+  // a 28k-node run).
   std::vector<int64_t> first(static_cast<size_t>(nodes) + 1, 0);
   for (const auto& t : topology.tets)
     for (int a = 0; a < 4; ++a)
@@ -54,14 +63,23 @@ void build_bars3d(Topology3& topology, int64_t nodes) {
   for (const auto& t : topology.tets)
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) upper[fill[std::min(t[a], t[b])]++] = std::max(t[a], t[b]);
+  // fill[n] becomes the end of bucket n's unique part.
+  for_chunks(pool, static_cast<size_t>(nodes), kChunk, [&](size_t, size_t begin, size_t end) {
+    for (size_t n = begin; n < end; ++n) {
+      const auto from = upper.begin() + first[n], to = upper.begin() + first[n + 1];
+      std::sort(from, to);
+      fill[n] = std::unique(from, to) - upper.begin();
+    }
+  });
+  std::vector<int64_t> bar_of(static_cast<size_t>(nodes) + 1, 0);
+  for (int64_t n = 0; n < nodes; ++n) bar_of[n + 1] = bar_of[n] + (fill[n] - first[n]);
   auto& bars = topology.bars;
-  bars.clear();
-  for (int64_t n = 0; n < nodes; ++n) {
-    const auto begin = upper.begin() + first[n], end = upper.begin() + first[n + 1];
-    std::sort(begin, end);
-    for (auto it = begin; it != end; ++it)
-      if (it == begin || *it != *(it - 1)) bars.push_back({static_cast<int32_t>(n), *it});
-  }
+  bars.resize(static_cast<size_t>(bar_of[nodes]));
+  for_chunks(pool, static_cast<size_t>(nodes), kChunk, [&](size_t, size_t begin, size_t end) {
+    for (size_t n = begin; n < end; ++n)
+      for (int64_t k = first[n]; k < fill[n]; ++k)
+        bars[bar_of[n] + (k - first[n])] = {static_cast<int32_t>(n), upper[k]};
+  });
 
   auto& offsets = topology.bar_offsets;
   offsets.assign(static_cast<size_t>(nodes) + 1, 0);

@@ -34,8 +34,16 @@ struct Topology3 {
 Topology3 triangulate3d(const Domain3& domain, const std::vector<Vec3>& points, int64_t fixed,
                         double depth, double coincidence, ThreadPool* pool);
 
+// The same from `all`, the Delaunay tetrahedra of `points` (delaunay3d.h), already built.
+Topology3 topology_of3d(const Domain3& domain, const std::vector<Vec3>& points,
+                        const std::vector<std::array<int32_t, 4>>& all, int64_t fixed, double depth,
+                        double coincidence, ThreadPool* pool);
+
+// The threads of `pool`, 1 for none.
+unsigned pool_threads(ThreadPool* pool);
+
 // The unique bars of `tets` and the CSR of each of the `nodes` nodes' bars, as Topology3 holds
-// them.
-void build_bars3d(Topology3& topology, int64_t nodes);
+// them; `pool` (may be null) shares the sorting.
+void build_bars3d(Topology3& topology, int64_t nodes, ThreadPool* pool = nullptr);
 
 }  // namespace meshd
