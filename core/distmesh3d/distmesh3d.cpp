@@ -1,8 +1,11 @@
 #include "core/distmesh3d/distmesh3d.h"
 
 #include <chrono>
+#include <optional>
 
 #include "core/common/error.h"
+#include "core/delaunay/delaunay3d.h"
+#include "core/distmesh3d/engine3.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
 #include "core/distmesh3d/settle_surface3d.h"
@@ -14,6 +17,13 @@ namespace {
 
 // Nodes closer than this (times h0) are one node (Topology3::coincident).
 constexpr double kCoincidentRelative = 0.01;
+// A retriangulation moves only the nodes that drifted half of ttol of their bars' length, when
+// they are at most this share of all and this many: most of a run's retriangulations are called
+// for by a handful of nodes (a node beside a fixed one, or one the projection moves along a
+// crease), and moving those few in the kept triangulation costs a fraction of building it anew.
+// Each move (a removal and an insertion) runs on one thread, hence the count's cap.
+constexpr double kPartialShare = 0.02;
+constexpr size_t kPartialMost = 1000;
 
 // The tetrahedra's points, the used fixed ones first, the others in first use order,
 // renumbered; points no kept tetrahedron uses go: free ones outside or cut off by the centroid
@@ -50,21 +60,30 @@ Relaxed3 compact(std::vector<Vec3> points, std::vector<std::array<int32_t, 4>> t
 }  // namespace
 
 Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool,
-                    Observer* observer, const std::atomic<bool>* cancel) {
+                    Observer* observer, const std::atomic<bool>* cancel, Engine3* engine) {
+  CpuEngine3 cpu(pool);
+  if (engine == nullptr) engine = &cpu;
   const auto check_cancel = [cancel] {
     if (cancel != nullptr && cancel->load(std::memory_order_relaxed))
       throw Error(ErrorCode::kCancelled, "", "the job was cancelled");
   };
   if (!(h0 > 0.0)) throw Error(ErrorCode::kInvalidArgument, "h0", "must be > 0");
+  engine->begin(domain, h0, params);
   const double geps = params.geps * h0;
 
-  const auto start = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const auto start = Clock::now();
   // 1-2. Initial nodes, fixed first.
   Nodes3 nodes;
   nodes.points = initial_points3d(domain, h0, params.geps, params.seed);
   nodes.fixed = static_cast<int64_t>(domain.fixed.size());
   nodes.momentum.assign(nodes.points.size(), Vec3{});
   nodes.at_triangulation = nodes.points;
+  Relaxed3 stats;
+  stats.t_initial = seconds_since(start);
 
   StepRule rule;
   rule.ttol = params.ttol;
@@ -72,29 +91,60 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   rule.max_move_factor = params.max_move_factor;
   rule.patience = params.patience;
 
-  Relaxed3 stats;
-  // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident).
-  const auto triangulate = [&](Nodes3& n, Relaxed3& counts) {
+  // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident):
+  // the nodes `moved` moved in the kept triangulation, or (none, or a move that failed) all of
+  // them triangulated anew.
+  Tetrahedralization3 delaunay;
+  const auto triangulate = [&](Nodes3& n, Relaxed3& counts, const std::vector<int32_t>& moved) {
+    const auto begin = Clock::now();
+    std::optional<std::vector<std::array<int32_t, 4>>> all;
+    if (!moved.empty()) all = delaunay.move(n.points, moved);
+    if (all) {
+      for (int32_t i : moved) n.at_triangulation[i] = n.points[i];
+      ++counts.partial_retriangulations;
+    }
+    Topology3 t;
     for (;;) {
-      Topology3 t = triangulate3d(domain, n.points, n.fixed, geps, kCoincidentRelative * h0, pool);
-      n.at_triangulation = n.points;
-      if (t.coincident.empty()) return t;
+      if (!all) {
+        all = delaunay.build(n.points, pool_threads(pool));
+        n.at_triangulation = n.points;
+      }
+      t = topology_of3d(domain, n.points, *all, n.fixed, geps, kCoincidentRelative * h0, pool);
+      if (t.coincident.empty()) break;
       remove_nodes3d(n, t.coincident);
       counts.removed += static_cast<int64_t>(t.coincident.size());
+      all.reset();
     }
+    counts.t_triangulate += seconds_since(begin);
+    return t;
   };
   Topology3 topology;
-  BarLengths bars;
   bool retriangulate = true;
+  // Nodes were removed since the last triangulation, which numbers them otherwise now.
+  bool renumbered = true;
+  int last_partial = -1;  // the iteration of the last partial retriangulation
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
     check_cancel();
     // 3. Retriangulate once a node drifted ttol of its length.
     if (retriangulate) {
-      topology = triangulate(nodes, stats);
+      engine->sync();
+      std::vector<int32_t> moved;
+      // Two partial ones in a row would mean the drifting node was not among those moved.
+      if (!renumbered && last_partial != iteration - 1) {
+        moved = drifted_nodes3d(topology, nodes, 0.5 * params.ttol);
+        if (moved.size() > kPartialMost ||
+            static_cast<double>(moved.size()) > kPartialShare * nodes.points.size())
+          moved.clear();
+      }
+      const int partial_before = stats.partial_retriangulations;
+      topology = triangulate(nodes, stats, moved);
+      if (stats.partial_retriangulations > partial_before) last_partial = iteration;
+      renumbered = false;
+      engine->start(nodes, topology);
       ++stats.retriangulations;
     }
     // 4, 5, 7, 8. Forces, move, projection.
-    const StepResult step = step3d(domain, params, h0, topology, nodes, bars, pool);
+    const StepResult step = engine->step();
     stats.iterations = iteration;
     if (observer != nullptr) {
       Progress progress;
@@ -102,8 +152,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       progress.max_move = step.max_move;
       progress.retriangulations = stats.retriangulations;
       progress.nodes = static_cast<int64_t>(nodes.points.size());
-      progress.elapsed_s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      progress.elapsed_s = seconds_since(start);
       observer->on_progress(progress);
     }
     rule.settling = rule.settle(rule.settling, step);
@@ -114,18 +163,21 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
     retriangulate = rule.needs_triangulation(step.max_drift);
     // 6. Density control on this step's bars: both ends of a bar far shorter than it should be.
     if (params.density_control_interval > 0 && iteration % params.density_control_interval == 0) {
-      const std::vector<int32_t> crowded = crowded_nodes3d(topology, bars, nodes.fixed);
+      const std::vector<int32_t> crowded = engine->crowded_nodes();
       if (!crowded.empty()) {
+        engine->sync();
         remove_nodes3d(nodes, crowded);
         stats.removed += static_cast<int64_t>(crowded.size());
         retriangulate = true;
+        renumbered = true;
       }
     }
   }
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
-  topology = triangulate(nodes, stats);
-  const auto relaxed = std::chrono::steady_clock::now();
+  engine->sync();
+  topology = triangulate(nodes, stats, {});
+  const auto relaxed = Clock::now();
   // The finish: the surface onto the boundary, then the slivers the forces leave.
   check_cancel();
   const SurfaceSettling surface =
@@ -134,15 +186,19 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   out.surface = surface;
   out.iterations = stats.iterations;
   out.retriangulations = stats.retriangulations + 1;
+  out.partial_retriangulations = stats.partial_retriangulations;
   out.removed = stats.removed;
   out.converged = stats.converged;
   out.t_relax = std::chrono::duration<double>(relaxed - start).count();
+  out.t_initial = stats.t_initial;
+  out.t_triangulate = stats.t_triangulate;
+  out.t_steps = out.t_relax - out.t_initial - out.t_triangulate;
   if (params.optimize_slivers) {
     check_cancel();
     out.optimizer_moves =
         optimize_slivers3d(domain, params.deps * h0, out.points, out.tets, out.fixed, pool);
   }
-  out.t_slivers = std::chrono::duration<double>(std::chrono::steady_clock::now() - relaxed).count();
+  out.t_slivers = seconds_since(relaxed);
   return out;
 }
 

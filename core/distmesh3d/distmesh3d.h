@@ -16,6 +16,8 @@
 
 namespace meshd {
 
+class Engine3;
+
 // The relaxed and optimised nodes and their tetrahedra, before the boundary faces are found.
 struct Relaxed3 {
   std::vector<Vec3> points;  // #N by 3, the `fixed` fixed ones first, all used
@@ -24,10 +26,14 @@ struct Relaxed3 {
   std::vector<std::array<int32_t, 4>> tets;  // #M by 4, positively oriented
   int iterations = 0;
   int retriangulations = 0;
+  int partial_retriangulations = 0;  // of those, the ones that moved a few nodes (distmesh3d.cpp)
   int64_t removed = 0;          // nodes density control took out, and free nodes on another node
   SurfaceSettling surface;      // the surface nodes moved onto the boundary (settle_surface3d.h)
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
-  double t_relax = 0.0;         // seconds: steps 1-8 and the last triangulation
+  double t_relax = 0.0;         // seconds: steps 1-8 and the last triangulation, of which
+  double t_initial = 0.0;       //   steps 1-2, the initial nodes,
+  double t_triangulate = 0.0;   //   step 3, every triangulation (the last one too),
+  double t_steps = 0.0;         //   steps 4-8 and density control (the engine's share)
   double t_slivers = 0.0;       // seconds: the surface settling and the sliver optimisation
   bool converged = false;
 };
@@ -36,7 +42,10 @@ struct Relaxed3 {
 // length unit). `pool` may be null (the caller's thread alone); the result is the same for any
 // number of threads. `observer` (may be null) hears of every step's progress (no snapshots in
 // 3D yet); throws Error(kCancelled) within one step once `cancel` (may be null) is set.
+// `engine` runs the steps (engine3.h); null: the CPU engine on `pool`. Triangulations and the
+// finish run on the host, on `pool`.
 Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool,
-                    Observer* observer = nullptr, const std::atomic<bool>* cancel = nullptr);
+                    Observer* observer = nullptr, const std::atomic<bool>* cancel = nullptr,
+                    Engine3* engine = nullptr);
 
 }  // namespace meshd

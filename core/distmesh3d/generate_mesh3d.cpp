@@ -11,19 +11,19 @@
 namespace meshd {
 
 MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer* observer,
-                            const std::atomic<bool>* cancel) {
+                            const std::atomic<bool>* cancel, Engine3* engine) {
   const auto start = std::chrono::steady_clock::now();
   // The loop spaces its finest nodes h0 apart wherever h is smallest: rescale so that h0 means
   // the edge length where h is at its lowest bound, as in 2D.
   const SizeRange range = size_range3(problem.size);
   const double low = range.low;
-  std::function<double(Vec3)> size = compile_size_field3(problem.size);
-  if (size) size = [h = std::move(size), low](Vec3 p) { return h(p) / low; };
   const double h0 = problem.h0 * low;
   const double band = kExactDistanceEdges * h0 * (range.high / low);
-  const GeometryDomain3 geometry(problem.geometry, h0, size, problem.auto_features, band);
+  const GeometryDomain3 geometry(problem.geometry, h0, compile_size_field3(problem.size, low),
+                                 problem.size.terms.empty(), problem.auto_features, band);
 
-  Relaxed3 relaxed = distmesh3d(geometry.domain(), h0, problem.params, pool, observer, cancel);
+  Relaxed3 relaxed =
+      distmesh3d(geometry.domain(), h0, problem.params, pool, observer, cancel, engine);
   MeshResult3 out;
   out.stats.iterations = relaxed.iterations;
   out.stats.converged = relaxed.converged;

@@ -14,6 +14,8 @@
 
 namespace meshd {
 
+class Engine3;
+
 struct RunStats3 {
   int iterations = 0;
   bool converged = false;
@@ -35,8 +37,9 @@ struct MeshResult3 {
 
 // Meshes `problem`. h0 and the size field are applied so that the edge length is about
 // h0 * h(p) where h is at its smallest bound. pool: may be null; observer: may be null;
-// Error(kCancelled) within one step once `cancel` (may be null) is set.
+// Error(kCancelled) within one step once `cancel` (may be null) is set. `engine` runs the steps
+// (engine3.h); null: the CPU engine on `pool`.
 MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer* observer,
-                            const std::atomic<bool>* cancel);
+                            const std::atomic<bool>* cancel, Engine3* engine = nullptr);
 
 }  // namespace meshd

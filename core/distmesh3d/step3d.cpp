@@ -125,6 +125,25 @@ std::vector<int32_t> crowded_nodes3d(const Topology3& topology, const BarLengths
   return out;
 }
 
+std::vector<int32_t> drifted_nodes3d(const Topology3& topology, const Nodes3& nodes,
+                                     double fraction) {
+  const auto& p = nodes.points;
+  std::vector<int32_t> out;
+  for (size_t i = static_cast<size_t>(nodes.fixed); i < p.size(); ++i) {
+    const int64_t first = topology.bar_offsets[i], last = topology.bar_offsets[i + 1];
+    if (first == last) continue;
+    double sum = 0.0;
+    for (int64_t k = first; k < last; ++k) {
+      const auto& bar = topology.bars[topology.bar_ends[k] >> 1];
+      sum += norm(p[bar[0]] - p[bar[1]]);
+    }
+    const double mean = sum / static_cast<double>(last - first);
+    if (norm(p[i] - nodes.at_triangulation[i]) > fraction * mean)
+      out.push_back(static_cast<int32_t>(i));
+  }
+  return out;
+}
+
 void remove_nodes3d(Nodes3& nodes, const std::vector<int32_t>& indices) {
   std::vector<char> gone(nodes.points.size(), 0);
   for (int32_t i : indices) gone[i] = 1;

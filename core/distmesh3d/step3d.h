@@ -39,6 +39,12 @@ StepResult step3d(const Domain3& domain, const Params3& params, double h0,
 std::vector<int32_t> crowded_nodes3d(const Topology3& topology, const BarLengths& bars,
                                      int64_t fixed);
 
+// The free nodes that moved more than `fraction` of their bars' mean length (in `topology`, at
+// today's positions) since their last triangulation, increasing: what a partial retriangulation
+// moves.
+std::vector<int32_t> drifted_nodes3d(const Topology3& topology, const Nodes3& nodes,
+                                     double fraction);
+
 // Removes the nodes `indices` (increasing, none fixed) from `nodes`, keeping the others' order.
 void remove_nodes3d(Nodes3& nodes, const std::vector<int32_t>& indices);
 
