@@ -1,8 +1,11 @@
-// meshbench3d: meshes the 3D benchmark domains with the CPU engine alone and prints one table row
-// per domain: sizes, iterations, time per phase and quality. Rows paste into RESULTS.md.
+// meshbench3d: meshes the 3D benchmark domains and prints one table row per domain: sizes,
+// iterations, time per phase and quality. Rows paste into RESULTS.md.
 //
-//   meshbench3d [--threads T] [--h0 H | --nodes N] [--repeat R] [-o OUT]... DOMAIN...
+//   meshbench3d [--backend cpu|gpu] [--threads T] [--h0 H | --nodes N] [--repeat R] [-o OUT]...
+//               DOMAIN...
 //
+// --backend gpu runs the steps on CUDA device 0 (gpu_engine3.h), the triangulations and the
+// finish on the host's T threads, as the service's GPU worker does.
 // DOMAIN is one of cases3d.h's names (ball, box_minus_sphere, cylinder_graded, torus). --nodes
 // picks h0 so that the initial nodes number about N; -o writes each mesh, with {name} replaced
 // by the domain's name (format from the extension: .msh .msh22 .vtu).
@@ -10,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,10 +29,14 @@
 #include "core/mesh/mesh_file.h"
 #include "core/mesh3d/tet_quality.h"
 #include "core/mesh3d/tet_validity.h"
+#ifdef MESHD_HAVE_CUDA
+#include "kernels/gpu_engine3.h"
+#endif
 
 namespace {
 
 struct Options {
+  std::string backend = "cpu";
   unsigned threads = 0;
   double h0 = 0.0;
   double nodes = 0.0;
@@ -39,9 +47,10 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
-               "usage: meshbench3d [--threads T] [--h0 H | --nodes N] [--repeat R] [-o OUT]...\n"
-               "                   DOMAIN...\n"
+               "usage: meshbench3d [--backend cpu|gpu] [--threads T] [--h0 H | --nodes N]\n"
+               "                   [--repeat R] [-o OUT]... DOMAIN...\n"
                "  DOMAIN      %s\n"
+               "  --backend   where the steps run (default cpu)\n"
                "  --h0 H      the edge length (default: each domain's own)\n"
                "  --nodes N   pick h0 so that the mesh has about N nodes\n"
                "  --repeat R  mesh each domain R times and report the fastest run\n"
@@ -60,6 +69,8 @@ Options parse(int argc, char** argv) {
     };
     if (a == "-h" || a == "--help")
       usage(0);
+    else if (a == "--backend")
+      o.backend = value();
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--h0")
@@ -75,7 +86,7 @@ Options parse(int argc, char** argv) {
     else
       o.domains.push_back(a);
   }
-  if (o.domains.empty()) usage(2);
+  if (o.domains.empty() || (o.backend != "cpu" && o.backend != "gpu")) usage(2);
   return o;
 }
 
@@ -84,14 +95,27 @@ std::string expand(std::string pattern, const std::string& name) {
   return pattern;
 }
 
+std::unique_ptr<meshd::Engine3> make_engine(const Options& o) {
+  if (o.backend == "cpu") return nullptr;
+#ifdef MESHD_HAVE_CUDA
+  return std::make_unique<meshd::GpuEngine3>(0);
+#else
+  std::fprintf(stderr, "meshbench3d: this build has no GPU engine\n");
+  std::exit(2);
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options opt = parse(argc, argv);
   meshd::ThreadPool pool(opt.threads);
+  const std::unique_ptr<meshd::Engine3> engine = make_engine(opt);
   std::printf(
-      "| domain | threads | h0 | nodes | tetrahedra | iterations | retri | removed / fixed unused "
-      "| t_relax s "
+      "| domain | steps, threads | h0 | nodes | tetrahedra | iterations | retri (partial) | "
+      "removed / fixed "
+      "unused "
+      "| t_relax s (initial / triangulations / steps) "
       "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral "
       "| surface off / h0 (max, nodes > 1e-3) | settled / caps / stuck |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -100,16 +124,19 @@ int main(int argc, char** argv) {
     try {
       const meshd::bench::Case3 c = meshd::bench::case3d(name);
       double h0 = opt.h0 > 0.0 ? opt.h0 : c.h0;
+      const bool uniform = c.size.terms.empty();
+      const auto size = meshd::compile_size_field3(c.size, 1.0);
       if (opt.nodes > 0.0) {
-        const meshd::GeometryDomain3 probe(c.shape, h0, c.size);
+        const meshd::GeometryDomain3 probe(c.shape, h0, size, uniform, true, INFINITY);
         const meshd::Domain3& d = probe.domain();
         h0 = meshd::h0_for_node_count3d(
             meshd::survey_volume3d(d.distance, d.size, d.bounds).weighted_volume, opt.nodes);
       }
-      const meshd::GeometryDomain3 geometry(c.shape, h0, c.size);
+      const meshd::GeometryDomain3 geometry(c.shape, h0, size, uniform, true, INFINITY);
       meshd::Relaxed3 best;
       for (int r = 0; r < opt.repeat; ++r) {
-        meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, meshd::Params3{}, &pool);
+        meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, meshd::Params3{}, &pool,
+                                                 nullptr, nullptr, engine.get());
         if (r == 0 || mesh.t_relax + mesh.t_slivers < best.t_relax + best.t_slivers)
           best = std::move(mesh);
       }
@@ -119,11 +146,15 @@ int main(int argc, char** argv) {
           meshd::surface_offset3d(geometry.domain(), best.points, best.tets, 1e-3 * h0);
       const bool converged = best.converged;
       std::printf(
-          "| %s | %u | %.5f | %zu | %zu | %d | %d | %lld / %lld | %.3f | %.3f | %.3f | %.3f | %.4f "
+          "| %s | %s, %u | %.5f | %zu | %zu | %d | %d (%d) | %lld / %lld | %.3f (%.3f / %.3f / "
+          "%.3f) | "
+          "%.3f | %.3f | %.3f | "
+          "%.4f "
           "| %lld | %.1f | %.1f | %.1e, %lld of %lld | %lld / %lld / %lld |\n",
-          name.c_str(), pool.size(), h0, best.points.size(), best.tets.size(), best.iterations,
-          best.retriangulations, static_cast<long long>(best.removed),
-          static_cast<long long>(best.unused_fixed), best_relax, best_slivers,
+          name.c_str(), opt.backend.c_str(), pool.size(), h0, best.points.size(), best.tets.size(),
+          best.iterations, best.retriangulations, best.partial_retriangulations,
+          static_cast<long long>(best.removed), static_cast<long long>(best.unused_fixed),
+          best_relax, best.t_initial, best.t_triangulate, best.t_steps, best_slivers,
           best_relax + best_slivers, q.q_min, q.q_mean,
           static_cast<long long>(q.histogram[0] + q.histogram[1]), q.min_dihedral_deg,
           q.max_dihedral_deg, off.max / h0, static_cast<long long>(off.beyond),

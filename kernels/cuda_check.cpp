@@ -15,6 +15,21 @@ void throw_cuda_error(cudaError_t error, const char* call, const char* file, int
                   ") in " + call + " at " + file + ":" + std::to_string(line));
 }
 
+int checked_device(int device) {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess) {
+    cudaGetLastError();
+    count = 0;
+  }
+  if (device < 0 || device >= count) {
+    throw Error(
+        ErrorCode::kUnavailable, "",
+        "no CUDA device " + std::to_string(device) + " (" + std::to_string(count) + " visible)");
+  }
+  MESHD_CUDA_CHECK(cudaSetDevice(device));
+  return device;
+}
+
 namespace {
 thread_local bool capturing = false;
 }  // namespace

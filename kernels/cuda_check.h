@@ -9,6 +9,10 @@ namespace meshd::gpu {
 
 [[noreturn]] void throw_cuda_error(cudaError_t error, const char* call, const char* file, int line);
 
+// Makes `device` this thread's current device and returns it; throws Error(kUnavailable) when
+// no such device is visible.
+int checked_device(int device);
+
 // Synchronise after every launch when MESHD_CUDA_SYNC_LAUNCHES is set (Debug builds define it),
 // so that an error names the kernel that caused it.
 void check_launch(const char* kernel, const char* file, int line);

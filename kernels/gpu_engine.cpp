@@ -22,6 +22,7 @@
 #include "kernels/lattice_triangulation.h"
 #include "kernels/launch.h"
 #include "kernels/loop_graph.h"
+#include "kernels/pinned_value.h"
 #include "kernels/refine_level.h"
 #include "kernels/scan.h"
 
@@ -30,6 +31,7 @@ namespace meshd {
 using gpu::Bar;
 using gpu::BarSums;
 using gpu::DeviceBuffer;
+using gpu::PinnedValue;
 using gpu::StepSums;
 using gpu::Tri;
 
@@ -42,20 +44,6 @@ constexpr int kRoundsPerBatch = 8;
 // A repair that needs more batches of rounds than this (kRoundsPerBatch rounds each, or in the
 // loop up to flip_rounds_per_launch) is pathological: rebuild instead.
 constexpr int kMaxFlipLaunches = 25;
-
-// Pinned host memory for the few scalars read every step.
-template <typename T>
-class PinnedValue {
- public:
-  PinnedValue() { MESHD_CUDA_CHECK(cudaMallocHost(&ptr_, sizeof(T))); }
-  ~PinnedValue() { cudaFreeHost(ptr_); }
-  PinnedValue(const PinnedValue&) = delete;
-  PinnedValue& operator=(const PinnedValue&) = delete;
-  T* get() const { return ptr_; }
-
- private:
-  T* ptr_ = nullptr;
-};
 
 }  // namespace
 
@@ -639,20 +627,7 @@ struct GpuEngine::Impl {
 
 // ---- Engine interface ---------------------------------------------------------------------------
 
-namespace {
-int checked_device(int device) {
-  const int count = gpu_device_count();
-  if (device < 0 || device >= count) {
-    throw Error(
-        ErrorCode::kUnavailable, "",
-        "no CUDA device " + std::to_string(device) + " (" + std::to_string(count) + " visible)");
-  }
-  MESHD_CUDA_CHECK(cudaSetDevice(device));
-  return device;
-}
-}  // namespace
-
-GpuEngine::GpuEngine(int device) : impl_((checked_device(device), std::make_unique<Impl>())) {
+GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make_unique<Impl>())) {
   impl_->device = device;
   impl_->use_device();
   MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));

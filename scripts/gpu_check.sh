@@ -3,8 +3,9 @@
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
 # the overhead), many small jobs through meshd (throughput), and one GPU against all of a host's
-# (gpus). Logs go to $OUT (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput|gpus]...
+# (gpus), and the 3D engine's steps on the GPU against the host's cores (volumes). Logs go to $OUT
+# (or ./gpu-logs).
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput|gpus|volumes]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -81,6 +82,15 @@ for step in "${steps[@]}"; do
       done
       for n in 20000 100000 1000000; do
         $run meshbench --backend cpu --nodes $n $req 2>&1 | tee -a "$out/bench_cpu.log"
+      done ;;
+    volumes)
+      # The 3D loop with its steps on the GPU, then on the host's cores, at about 10k, 100k and
+      # 175k nodes (a million tetrahedra); triangulations and the finish on all the host's cores.
+      cores=$(nproc)
+      v="ball box_minus_sphere torus cylinder_graded"
+      for n in 10000 100000 175000; do
+        $run meshbench3d --backend gpu --threads "$cores" --nodes $n $v 2>&1 | tee -a "$out/bench3d_gpu.log"
+        $run meshbench3d --backend cpu --threads "$cores" --nodes $n $v 2>&1 | tee -a "$out/bench3d_cpu.log"
       done ;;
     primitives)
       # Trees of many shapes and long polygons (bench/many_primitives.py) at equal node counts,

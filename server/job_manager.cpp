@@ -83,18 +83,10 @@ std::shared_ptr<Job> JobManager::submit(const v1::MeshRequest& request,
                 "BACKEND_GPU asked, but this server has no working GPU: use BACKEND_AUTO or "
                 "BACKEND_CPU");
   }
-  if (spec.volume) {
-    // 3D has a CPU engine only: a volume never waits for a GPU worker.
-    if (worker == Backend::kGpu) {
-      throw Error(ErrorCode::kFailedPrecondition, "options.backend",
-                  "volume (3D) jobs run on the CPU engine for now: use BACKEND_AUTO or "
-                  "BACKEND_CPU");
-    }
-    if (cpu_workers_ == 0) {
-      throw Error(ErrorCode::kFailedPrecondition, "volume",
-                  "volume (3D) jobs run on the CPU engine, and this server has no CPU worker");
-    }
-    worker = Backend::kCpu;
+  if (spec.volume && worker == Backend::kAuto) {
+    // A 3D job's time is mostly its host parts (the triangulations, the finish), on a GPU worker
+    // too: BACKEND_AUTO leaves the GPU workers to plane jobs where CPU workers exist.
+    worker = cpu_workers_ > 0 ? Backend::kCpu : Backend::kGpu;
   }
   if (worker == Backend::kAuto && (!has_gpu() || cpu_workers_ == 0))
     worker = has_gpu() ? Backend::kGpu : Backend::kCpu;

@@ -112,7 +112,8 @@ std::shared_ptr<Job> JobQueue::pop(Backend worker) {
 void JobQueue::done(const Job& job, Backend kind, double seconds, bool succeeded) {
   std::lock_guard lock(mutex_);
   std::erase_if(running_, [&](const Running& r) { return r.job == &job; });
-  if (succeeded) model_.observe(kind, job.spec().estimated_nodes, seconds);
+  // The model predicts plane jobs; a volume's seconds per node are another scale.
+  if (succeeded && !job.spec().volume) model_.observe(kind, job.spec().estimated_nodes, seconds);
   changed_.notify_all();
 }
 

@@ -109,7 +109,7 @@ EncodedResult Worker::run_plane(const Job& job, Observer& observer, Job::Clock::
 
 EncodedResult Worker::run_volume(const Job& job, Observer& observer, Job::Clock::time_point t) {
   const MeshResult3 result = generate_mesh3d(*job.spec().volume, engine_->engine().host_pool(),
-                                             &observer, job.cancel_flag());
+                                             &observer, job.cancel_flag(), engine_->engine3());
   const double t_mesh = seconds_since(t);
   EncodedResult encoded = encode_result(result);
   spdlog::info(

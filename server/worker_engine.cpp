@@ -7,6 +7,7 @@
 #include "core/distmesh/cpu_engine.h"
 #ifdef MESHD_HAVE_CUDA
 #include "kernels/gpu_engine.h"
+#include "kernels/gpu_engine3.h"
 #endif
 
 namespace meshd {
@@ -32,11 +33,13 @@ class GpuWorkerEngine final : public WorkerEngine {
   GpuWorkerEngine(int device, unsigned host_threads)
       : host_pool_(host_threads),
         engine_(device),
+        engine3_(device),
         name_(gpu_device_name(device) + " (device " + std::to_string(device) + ")") {
     engine_.set_host_pool(&host_pool_);
     engine_.warm_up();
   }
   Engine& engine() override { return engine_; }
+  Engine3* engine3() override { return &engine3_; }
   std::string device() const override { return name_; }
   int device_index() const override { return engine_.device(); }
   int64_t device_memory_bytes() const override { return gpu_memory_in_use(engine_.device()); }
@@ -44,6 +47,7 @@ class GpuWorkerEngine final : public WorkerEngine {
  private:
   ThreadPool host_pool_;
   GpuEngine engine_;
+  GpuEngine3 engine3_;
   std::string name_;
 };
 #endif

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/distmesh/engine.h"
+#include "core/distmesh3d/engine3.h"
 
 namespace meshd {
 
@@ -15,6 +16,8 @@ class WorkerEngine {
  public:
   virtual ~WorkerEngine() = default;
   virtual Engine& engine() = 0;
+  // The engine of 3D jobs' steps; null: the CPU's, on engine().host_pool().
+  virtual Engine3* engine3() { return nullptr; }
   // "cpu (8 threads)", "NVIDIA H100 80GB HBM3 (device 0)".
   virtual std::string device() const = 0;
   // CUDA device ordinal, -1 for the CPU.

@@ -40,6 +40,31 @@ TEST_F(GpuService, JobsRunOnTheBackendTheyAskFor) {
   EXPECT_NE(metrics.find("meshd_device_memory_bytes{device=\"0\"}"), std::string::npos);
 }
 
+// A volume asked for the GPU runs its steps on the GPU worker's 3D engine; BACKEND_AUTO sends it
+// to the CPU worker beside it.
+TEST_F(GpuService, VolumesRunOnTheGpuWhenAsked) {
+  ServerOptions options = test_options();
+  options.backend = Backend::kAuto;
+  TestServer server(options, workers_for(options));
+  auto stub = server.stub();
+  for (const auto backend : {v1::JobOptions::BACKEND_GPU, v1::JobOptions::BACKEND_AUTO}) {
+    SCOPED_TRACE(v1::JobOptions::Backend_Name(backend));
+    v1::MeshRequest request;
+    request.mutable_volume()->mutable_geometry()->mutable_sphere()->set_radius(1.0);
+    request.set_h0(0.15);
+    request.mutable_options()->set_backend(backend);
+    const StreamResult r = generate(*stub, request);
+    ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+    EXPECT_TRUE(r.checksum_ok);
+    EXPECT_EQ(r.done.backend(), backend == v1::JobOptions::BACKEND_GPU
+                                    ? v1::JobOptions::BACKEND_GPU
+                                    : v1::JobOptions::BACKEND_CPU);
+    EXPECT_GT(r.done.quality().q_min(), 0.2);
+    EXPECT_GT(r.done.quality().min_dihedral_deg(), 10.0);
+    EXPECT_LT(r.done.quality().max_surface_offset(), 1e-3 * 0.15);
+  }
+}
+
 // A job larger than the largest before grows the worker's arena; the same size again reuses it.
 TEST_F(GpuService, GpuWorkerKeepsItsEngineWarmAcrossJobs) {
   ServerOptions options = test_options();

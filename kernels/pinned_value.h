@@ -1,0 +1,23 @@
+// Pinned host memory for the few scalars an engine reads from the device every step.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include "kernels/cuda_check.h"
+
+namespace meshd::gpu {
+
+template <typename T>
+class PinnedValue {
+ public:
+  PinnedValue() { MESHD_CUDA_CHECK(cudaMallocHost(&ptr_, sizeof(T))); }
+  ~PinnedValue() { cudaFreeHost(ptr_); }
+  PinnedValue(const PinnedValue&) = delete;
+  PinnedValue& operator=(const PinnedValue&) = delete;
+  T* get() const { return ptr_; }
+
+ private:
+  T* ptr_ = nullptr;
+};
+
+}  // namespace meshd::gpu
