@@ -8,8 +8,9 @@
 
 #include <array>
 #include <cmath>
-#include <random>
 #include <vector>
+
+#include "tests/core/random_points3.h"
 
 namespace meshd {
 namespace {
@@ -19,13 +20,7 @@ double signed_volume(const std::vector<Vec3>& p, const std::array<int32_t, 4>& t
   return dot(p[t[1]] - a, cross(p[t[2]] - a, p[t[3]] - a)) / 6.0;
 }
 
-std::vector<Vec3> random_points(size_t n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> p(n);
-  for (Vec3& q : p) q = {u(rng), u(rng), u(rng)};
-  return p;
-}
+using testing::random_points3;
 
 std::vector<Vec3> lattice(int cells) {
   std::vector<Vec3> p;
@@ -47,7 +42,7 @@ void expect_fills(const std::vector<Vec3>& p, const std::vector<std::array<int32
 }
 
 TEST(Delaunay3d, TheSameTetrahedraOnOneThreadAndOnSeveral) {
-  const std::vector<Vec3> points = random_points(30000, 7);
+  const std::vector<Vec3> points = random_points3(30000, 7);
   const auto one = delaunay_tetrahedralize(points, 1);
   const auto four = delaunay_tetrahedralize(points, 4);
   EXPECT_EQ(one, four);
@@ -94,7 +89,7 @@ TEST(Delaunay3d, CoincidingPointsLeaveTheLowestIndex) {
 }
 
 TEST(Delaunay3d, MovingAFewPointsGivesTheTetrahedraOfTheirNewPlaces) {
-  std::vector<Vec3> points = random_points(25000, 11);
+  std::vector<Vec3> points = random_points3(25000, 11);
   Tetrahedralization3 kept;
   kept.build(points, 2);
   std::vector<int32_t> moved;

@@ -3,24 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 #include <set>
+
+#include "tests/core/random_points3.h"
 
 namespace meshd {
 namespace {
 
-std::vector<Vec3> random_points(int n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> points(n);
-  for (Vec3& p : points) p = {u(rng), u(rng), u(rng)};
-  return points;
-}
+using testing::random_points3;
 
 TEST(Topology3d, KeepsTheTetrahedraInsideWithPositiveVolume) {
   Domain3 ball;
   ball.distance = [](Vec3 p) { return norm(p) - 0.8; };
-  const std::vector<Vec3> points = random_points(2000, 1);
+  const std::vector<Vec3> points = random_points3(2000, 1);
   ThreadPool pool(2);
   const Topology3 t = triangulate3d(ball, points, 0, 0.01, 1e-9, &pool);
   ASSERT_GT(t.tets.size(), 1000u);
@@ -32,7 +27,7 @@ TEST(Topology3d, KeepsTheTetrahedraInsideWithPositiveVolume) {
 }
 
 TEST(Topology3d, BarsAreTheUniqueEdgesAndEachNodeListsItsOwn) {
-  const std::vector<Vec3> points = random_points(500, 2);
+  const std::vector<Vec3> points = random_points3(500, 2);
   Domain3 box;
   box.distance = [](Vec3) { return -1.0; };
   const Topology3 t = triangulate3d(box, points, 0, 0.5, 1e-9, nullptr);
@@ -57,7 +52,7 @@ TEST(Topology3d, BarsAreTheUniqueEdgesAndEachNodeListsItsOwn) {
 }
 
 TEST(Topology3d, AFreeNodeOnAnotherIsListed) {
-  std::vector<Vec3> points = random_points(300, 3);
+  std::vector<Vec3> points = random_points3(300, 3);
   points.push_back(points[0] + Vec3{1e-7, 0.0, 0.0});  // on the fixed node 0
   points.push_back(points[5] + Vec3{0.0, 1e-7, 0.0});  // on the free node 5
   Domain3 box;
