@@ -98,15 +98,17 @@ class SliverOptimizer {
       return worst > o.worst || (worst == o.worst && mean > o.mean);
     }
   };
-  Score star_score(int32_t v, Vec3 x) {
+  // Stops as soon as its worst falls under `give_up_below` (the best so far, which it then
+  // cannot beat): most candidates of a search lose at their first poor tetrahedron.
+  Score star_score(int32_t v, Vec3 x, double give_up_below = -INFINITY) {
     const Vec3 saved = p_[v];
     p_[v] = x;
     double worst = INFINITY, sum = 0.0;
-    stars_.for_each(v, [&](int32_t t) {
-      const double q = quality(t);
+    for (int64_t k = stars_.first[v]; k < stars_.first[v + 1] && !(worst < give_up_below); ++k) {
+      const double q = quality(stars_.tets[k]);
       worst = std::min(worst, q);
       sum += q;
-    });
+    }
     p_[v] = saved;
     const auto count = static_cast<double>(stars_.size(v));
     return {std::min(worst, kOptimizeBelowQuality3), count > 0.0 ? sum / count : 0.0};
@@ -137,7 +139,7 @@ class SliverOptimizer {
             x = project_to_boundary3d(domain_, x, step_);
           else if (domain_.distance(x) >= 0.0)
             continue;
-          const Score q = star_score(v, x);
+          const Score q = star_score(v, x, best.worst);
           if (q > best) {
             best = q;
             best_x = x;

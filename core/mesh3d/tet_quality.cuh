@@ -14,9 +14,17 @@ namespace meshd {
 // when there is none or it is infinite. The measures below are free of scale and compute on the
 // edges multiplied by it, so that the squares and fourth powers of lengths they form neither
 // underflow nor overflow, whatever the length unit.
+// Comparisons rather than fmax and fmin, which g++ leaves as library calls (for NaN's sake; a NaN
+// coordinate gives q = 0 and zero angles all the same): the sliver removal measures millions of
+// tetrahedra.
+MESHD_HD inline double max_by_compare(double a, double b) { return a > b ? a : b; }
+MESHD_HD inline double min_by_compare(double a, double b) { return a < b ? a : b; }
+
 MESHD_HD inline double tet_unit_scale(Vec3 u, Vec3 v, Vec3 w) {
-  const auto max_abs = [](Vec3 e) { return fmax(fabs(e.x), fmax(fabs(e.y), fabs(e.z))); };
-  const double m = fmax(max_abs(u), fmax(max_abs(v), max_abs(w)));
+  const auto max_abs = [](Vec3 e) {
+    return max_by_compare(fabs(e.x), max_by_compare(fabs(e.y), fabs(e.z)));
+  };
+  const double m = max_by_compare(max_abs(u), max_by_compare(max_abs(v), max_abs(w)));
   return m > 0.0 ? 1.0 / m : 0.0;
 }
 
@@ -85,8 +93,8 @@ MESHD_HD inline void tet_dihedral_range(Vec3 a, Vec3 b, Vec3 c, Vec3 d, double& 
   min_deg = angles[0];
   max_deg = angles[0];
   for (int e = 1; e < 6; ++e) {
-    min_deg = fmin(min_deg, angles[e]);
-    max_deg = fmax(max_deg, angles[e]);
+    min_deg = min_by_compare(min_deg, angles[e]);
+    max_deg = max_by_compare(max_deg, angles[e]);
   }
 }
 
