@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
       "| domain | steps, threads | h0 | nodes | tetrahedra | iterations | retri (partial) | "
       "removed / fixed "
       "unused "
-      "| t_relax s (initial / triangulations / steps) "
+      "| t_relax s (initial / triangulations [CGAL] / steps) "
       "| t_slivers s | t_total s | q_min | q_mean | q < 0.2 | min dihedral | max dihedral "
       "| surface off / h0 (max, nodes > 1e-3) | settled / caps / stuck |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -146,7 +146,8 @@ int main(int argc, char** argv) {
           meshd::surface_offset3d(geometry.domain(), best.points, best.tets, 1e-3 * h0);
       const bool converged = best.converged;
       std::printf(
-          "| %s | %s, %u | %.5f | %zu | %zu | %d | %d (%d) | %lld / %lld | %.3f (%.3f / %.3f / "
+          "| %s | %s, %u | %.5f | %zu | %zu | %d | %d (%d) | %lld / %lld | %.3f (%.3f / %.3f "
+          "[%.3f] / "
           "%.3f) | "
           "%.3f | %.3f | %.3f | "
           "%.4f "
@@ -154,8 +155,8 @@ int main(int argc, char** argv) {
           name.c_str(), opt.backend.c_str(), pool.size(), h0, best.points.size(), best.tets.size(),
           best.iterations, best.retriangulations, best.partial_retriangulations,
           static_cast<long long>(best.removed), static_cast<long long>(best.unused_fixed),
-          best_relax, best.t_initial, best.t_triangulate, best.t_steps, best_slivers,
-          best_relax + best_slivers, q.q_min, q.q_mean,
+          best_relax, best.t_initial, best.t_triangulate, best.t_delaunay, best.t_steps,
+          best_slivers, best_relax + best_slivers, q.q_min, q.q_mean,
           static_cast<long long>(q.histogram[0] + q.histogram[1]), q.min_dihedral_deg,
           q.max_dihedral_deg, off.max / h0, static_cast<long long>(off.beyond),
           static_cast<long long>(off.surface), static_cast<long long>(best.surface.moved),

@@ -98,7 +98,12 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   const auto triangulate = [&](Nodes3& n, Relaxed3& counts, const std::vector<int32_t>& moved) {
     const auto begin = Clock::now();
     std::optional<std::vector<std::array<int32_t, 4>>> all;
-    if (!moved.empty()) all = delaunay.move(n.points, moved);
+    const auto tetrahedralize = [&](auto&& make) {
+      const auto t0 = Clock::now();
+      all = make();
+      counts.t_delaunay += seconds_since(t0);
+    };
+    if (!moved.empty()) tetrahedralize([&] { return delaunay.move(n.points, moved); });
     if (all) {
       for (int32_t i : moved) n.at_triangulation[i] = n.points[i];
       ++counts.partial_retriangulations;
@@ -106,7 +111,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
     Topology3 t;
     for (;;) {
       if (!all) {
-        all = delaunay.build(n.points, pool_threads(pool));
+        tetrahedralize([&] { return delaunay.build(n.points, pool_threads(pool)); });
         n.at_triangulation = n.points;
       }
       t = topology_of3d(domain, n.points, *all, n.fixed, geps, kCoincidentRelative * h0, pool);
@@ -192,6 +197,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   out.t_relax = std::chrono::duration<double>(relaxed - start).count();
   out.t_initial = stats.t_initial;
   out.t_triangulate = stats.t_triangulate;
+  out.t_delaunay = stats.t_delaunay;
   out.t_steps = out.t_relax - out.t_initial - out.t_triangulate;
   if (params.optimize_slivers) {
     check_cancel();

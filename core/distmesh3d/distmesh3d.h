@@ -32,7 +32,8 @@ struct Relaxed3 {
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation
   double t_relax = 0.0;         // seconds: steps 1-8 and the last triangulation, of which
   double t_initial = 0.0;       //   steps 1-2, the initial nodes,
-  double t_triangulate = 0.0;   //   step 3, every triangulation (the last one too),
+  double t_triangulate = 0.0;   //   step 3, every triangulation (the last one too), of which
+  double t_delaunay = 0.0;      //     CGAL's tetrahedra (built or moved, in canonical order),
   double t_steps = 0.0;         //   steps 4-8 and density control (the engine's share)
   double t_slivers = 0.0;       // seconds: the surface settling and the sliver optimisation
   bool converged = false;
