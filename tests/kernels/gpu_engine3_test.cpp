@@ -78,7 +78,7 @@ Start start_of(const Domain3& domain, double h0) {
 
 // Steps both engines `steps` times from the same start and compares. The L0 scale's sums run in
 // another order on the device, so the last bits differ, and each step's projection (a finite
-// difference over 1.5e-8 h0) amplifies them: positions agree to about 5e-8 h0 after one step.
+// difference over 1.5e-8 h0) amplifies them: positions agree to about 2e-7 h0 after one step.
 void expect_same_steps(const Domain3& domain, double h0, int steps, double tolerance) {
   const Params3 params;
   Start cpu_start = start_of(domain, h0), gpu_start = cpu_start;
@@ -117,8 +117,8 @@ void expect_same_steps(const Domain3& domain, double h0, int steps, double toler
 TEST(GpuEngine3, StepsTheBallAsTheCpuDoes) {
   SKIP_WITHOUT_GPU3();
   const GeometryDomain3 ball(node(Sphere{{0, 0, 0}, 1.0}), 0.15);
-  expect_same_steps(ball.domain(), 0.15, 1, 2e-7);
-  expect_same_steps(ball.domain(), 0.15, 5, 1e-6);
+  expect_same_steps(ball.domain(), 0.15, 1, 1e-6);
+  expect_same_steps(ball.domain(), 0.15, 5, 1e-5);
 }
 
 TEST(GpuEngine3, StepsEveryPartOfACompiledGeometryAndAGradedField) {
@@ -128,8 +128,8 @@ TEST(GpuEngine3, StepsEveryPartOfACompiledGeometryAndAGradedField) {
                               kExactDistanceEdges * 0.08 * 2.5);
   ASSERT_NE(solid.domain().size_field, nullptr);
   ASSERT_FALSE(solid.domain().fixed.empty());
-  expect_same_steps(solid.domain(), 0.08, 1, 2e-7);
-  expect_same_steps(solid.domain(), 0.08, 5, 1e-6);
+  expect_same_steps(solid.domain(), 0.08, 1, 1e-6);
+  expect_same_steps(solid.domain(), 0.08, 5, 1e-5);
 }
 
 TEST(GpuEngine3, FindsTheCrowdedNodesTheCpuFinds) {
