@@ -119,7 +119,7 @@ def test_volume(ctx):
         assert counts == {k: len(v) for k, v in mesh.boundary_groups.items()}, counts
     try:
         ctx.client.generate(meshd.request(part, h0=0.25, backend="gpu"))
-        raise AssertionError("a volume ran on BACKEND_GPU")
+        raise AssertionError("BACKEND_GPU ran on a server without a GPU")
     except meshd.FailedPrecondition:
         pass
     try:
