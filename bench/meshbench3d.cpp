@@ -23,6 +23,7 @@
 #include "core/common/thread_pool.h"
 #include "core/distmesh3d/assemble_mesh3d.h"
 #include "core/distmesh3d/distmesh3d.h"
+#include "core/distmesh3d/engine3.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/node_estimate3d.h"
 #include "core/distmesh3d/surface_offset3d.h"
