@@ -141,6 +141,27 @@ std::optional<std::vector<std::array<int32_t, 4>>> Tetrahedralization3::move(
   return s.tets(points);
 }
 
+bool Tetrahedralization3::remove(const std::vector<int32_t>& gone) {
+  Impl& s = *impl_;
+  if (s.duplicates || s.vertex.empty()) {
+    s.dt.clear();
+    s.vertex.clear();
+    return false;
+  }
+  for (int32_t i : gone) s.dt.remove(s.vertex[i]);
+  size_t kept = 0, next_gone = 0;
+  for (size_t i = 0; i < s.vertex.size(); ++i) {
+    if (next_gone < gone.size() && static_cast<size_t>(gone[next_gone]) == i) {
+      ++next_gone;
+      continue;
+    }
+    s.vertex[i]->info() = static_cast<int32_t>(kept);
+    s.vertex[kept++] = s.vertex[i];
+  }
+  s.vertex.resize(kept);
+  return true;
+}
+
 std::vector<std::array<int32_t, 4>> delaunay_tetrahedralize(const std::vector<Vec3>& points,
                                                             unsigned threads) {
   return Tetrahedralization3().build(points, threads);

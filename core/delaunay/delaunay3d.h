@@ -39,6 +39,10 @@ class Tetrahedralization3 {
   // again) when a point lands on another or the last build had coinciding points.
   std::optional<std::vector<std::array<int32_t, 4>>> move(const std::vector<Vec3>& points,
                                                           const std::vector<int32_t>& moved);
+  // Takes the points `gone` (indices, increasing) out and numbers the rest as a compaction that
+  // keeps their order does (remove_nodes3d), so that later moves and builds continue from there.
+  // False (and the triangulation is gone) when the last build had coinciding points.
+  bool remove(const std::vector<int32_t>& gone);
 
  private:
   struct Impl;

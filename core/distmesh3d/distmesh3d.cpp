@@ -97,10 +97,12 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   rule.patience = params.patience;
 
   // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident):
-  // the nodes `moved` moved in the kept triangulation, or (none, or a move that failed) all of
-  // them triangulated anew.
+  // the nodes `moved` moved in the kept triangulation (which lost the nodes removed since), or
+  // (none given, or a move that failed) all of them triangulated anew. Tells whether the kept
+  // triangulation served.
   Tetrahedralization3 delaunay;
-  const auto triangulate = [&](Nodes3& n, Relaxed3& counts, const std::vector<int32_t>& moved) {
+  const auto triangulate = [&](Nodes3& n, Relaxed3& counts,
+                               const std::optional<std::vector<int32_t>>& moved, Topology3& t) {
     const auto begin = Clock::now();
     std::optional<std::vector<std::array<int32_t, 4>>> all;
     const auto tetrahedralize = [&](auto&& make) {
@@ -108,12 +110,10 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       all = make();
       counts.t_delaunay += seconds_since(t0);
     };
-    if (!moved.empty()) tetrahedralize([&] { return delaunay.move(n.points, moved); });
-    if (all) {
-      for (int32_t i : moved) n.at_triangulation[i] = n.points[i];
-      ++counts.partial_retriangulations;
-    }
-    Topology3 t;
+    if (moved) tetrahedralize([&] { return delaunay.move(n.points, *moved); });
+    const bool partial = all.has_value();
+    if (partial)
+      for (int32_t i : *moved) n.at_triangulation[i] = n.points[i];
     for (;;) {
       if (!all) {
         tetrahedralize([&] { return delaunay.build(n.points, pool_threads(pool)); });
@@ -124,32 +124,35 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       remove_nodes3d(n, t.coincident);
       counts.removed += static_cast<int64_t>(t.coincident.size());
       all.reset();
+      if (delaunay.remove(t.coincident))
+        tetrahedralize([&] { return delaunay.move(n.points, {}); });
     }
+    measure_spacing3d(t, n);
     counts.t_triangulate += seconds_since(begin);
-    return t;
+    return partial;
   };
   Topology3 topology;
   bool retriangulate = true;
-  // Nodes were removed since the last triangulation, which numbers them otherwise now.
-  bool renumbered = true;
-  int last_partial = -1;  // the iteration of the last partial retriangulation
+  bool triangulated = false;  // once, a kept triangulation and the nodes' spacing exist
+  int last_partial = -1;      // the iteration of the last partial retriangulation
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
     check_cancel();
     // 3. Retriangulate once a node drifted ttol of its length.
     if (retriangulate) {
       engine->sync();
-      std::vector<int32_t> moved;
+      std::optional<std::vector<int32_t>> moved;
       // Two partial ones in a row would mean the drifting node was not among those moved.
-      if (!renumbered && last_partial != iteration - 1) {
-        moved = drifted_nodes3d(topology, nodes, 0.5 * params.ttol);
-        if (moved.size() > kPartialMost ||
-            static_cast<double>(moved.size()) > kPartialShare * nodes.points.size())
-          moved.clear();
+      if (triangulated && last_partial != iteration - 1) {
+        moved = drifted_nodes3d(nodes, 0.5 * params.ttol);
+        if (moved->size() > kPartialMost ||
+            static_cast<double>(moved->size()) > kPartialShare * nodes.points.size())
+          moved.reset();
       }
-      const int partial_before = stats.partial_retriangulations;
-      topology = triangulate(nodes, stats, moved);
-      if (stats.partial_retriangulations > partial_before) last_partial = iteration;
-      renumbered = false;
+      if (triangulate(nodes, stats, moved, topology)) {
+        last_partial = iteration;
+        ++stats.partial_retriangulations;
+      }
+      triangulated = true;
       engine->start(nodes, topology);
       ++stats.retriangulations;
     }
@@ -177,16 +180,16 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       if (!crowded.empty()) {
         engine->sync();
         remove_nodes3d(nodes, crowded);
+        delaunay.remove(crowded);  // a triangulation lost here is built anew at step 3
         stats.removed += static_cast<int64_t>(crowded.size());
         retriangulate = true;
-        renumbered = true;
       }
     }
   }
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
   engine->sync();
-  topology = triangulate(nodes, stats, {});
+  triangulate(nodes, stats, std::nullopt, topology);
   // A tetrahedron of four coplanar nodes that the centroid filter kept has no volume and, when
   // its nodes are fixed (samples on a plane through the interior, as a polyhedron whose surface
   // crosses itself makes), nothing can mend it: it goes.

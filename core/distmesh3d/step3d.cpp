@@ -125,11 +125,10 @@ std::vector<int32_t> crowded_nodes3d(const Topology3& topology, const BarLengths
   return out;
 }
 
-std::vector<int32_t> drifted_nodes3d(const Topology3& topology, const Nodes3& nodes,
-                                     double fraction) {
+void measure_spacing3d(const Topology3& topology, Nodes3& nodes) {
   const auto& p = nodes.points;
-  std::vector<int32_t> out;
-  for (size_t i = static_cast<size_t>(nodes.fixed); i < p.size(); ++i) {
+  nodes.spacing.assign(p.size(), 0.0);
+  for (size_t i = 0; i < p.size(); ++i) {
     const int64_t first = topology.bar_offsets[i], last = topology.bar_offsets[i + 1];
     if (first == last) continue;
     double sum = 0.0;
@@ -137,10 +136,17 @@ std::vector<int32_t> drifted_nodes3d(const Topology3& topology, const Nodes3& no
       const auto& bar = topology.bars[topology.bar_ends[k] >> 1];
       sum += norm(p[bar[0]] - p[bar[1]]);
     }
-    const double mean = sum / static_cast<double>(last - first);
-    if (norm(p[i] - nodes.at_triangulation[i]) > fraction * mean)
-      out.push_back(static_cast<int32_t>(i));
+    nodes.spacing[i] = sum / static_cast<double>(last - first);
   }
+}
+
+std::vector<int32_t> drifted_nodes3d(const Nodes3& nodes, double fraction) {
+  const auto& p = nodes.points;
+  std::vector<int32_t> out;
+  for (size_t i = static_cast<size_t>(nodes.fixed); i < p.size(); ++i)
+    if (nodes.spacing[i] > 0.0 &&
+        norm(p[i] - nodes.at_triangulation[i]) > fraction * nodes.spacing[i])
+      out.push_back(static_cast<int32_t>(i));
   return out;
 }
 
@@ -153,11 +159,13 @@ void remove_nodes3d(Nodes3& nodes, const std::vector<int32_t>& indices) {
     nodes.points[kept] = nodes.points[i];
     nodes.momentum[kept] = nodes.momentum[i];
     nodes.at_triangulation[kept] = nodes.at_triangulation[i];
+    if (!nodes.spacing.empty()) nodes.spacing[kept] = nodes.spacing[i];
     ++kept;
   }
   nodes.points.resize(kept);
   nodes.momentum.resize(kept);
   nodes.at_triangulation.resize(kept);
+  if (!nodes.spacing.empty()) nodes.spacing.resize(kept);
 }
 
 }  // namespace meshd

@@ -19,6 +19,9 @@ struct Nodes3 {
   std::vector<Vec3> points;            // #N by 3, the first `fixed` never move
   std::vector<Vec3> momentum;          // #N by 3, the last step's move
   std::vector<Vec3> at_triangulation;  // #N by 3, the points at the last triangulation
+  // #N, each node's mean bar length in the last triangulation (0 for a node in no bar): the
+  // scale of drifted_nodes3d, kept with the nodes so that it outlives a renumbering.
+  std::vector<double> spacing;
   int64_t fixed = 0;
 };
 
@@ -39,11 +42,12 @@ StepResult step3d(const Domain3& domain, const Params3& params, double h0,
 std::vector<int32_t> crowded_nodes3d(const Topology3& topology, const BarLengths& bars,
                                      int64_t fixed);
 
-// The free nodes that moved more than `fraction` of their bars' mean length (in `topology`, at
-// today's positions) since their last triangulation, increasing: what a partial retriangulation
-// moves.
-std::vector<int32_t> drifted_nodes3d(const Topology3& topology, const Nodes3& nodes,
-                                     double fraction);
+// Sets nodes.spacing from the bars of `topology` (a triangulation of nodes.points).
+void measure_spacing3d(const Topology3& topology, Nodes3& nodes);
+
+// The free nodes that moved more than `fraction` of their spacing since their last
+// triangulation, increasing: what a partial retriangulation moves.
+std::vector<int32_t> drifted_nodes3d(const Nodes3& nodes, double fraction);
 
 // Removes the nodes `indices` (increasing, none fixed) from `nodes`, keeping the others' order.
 void remove_nodes3d(Nodes3& nodes, const std::vector<int32_t>& indices);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -104,6 +105,38 @@ TEST(Delaunay3d, MovingAFewPointsGivesTheTetrahedraOfTheirNewPlaces) {
   points[moved[0]] = points[moved[1] + 1];
   EXPECT_FALSE(kept.move(points, {moved[0]}).has_value());
   EXPECT_EQ(kept.build(points, 1), delaunay_tetrahedralize(points, 1));
+}
+
+// The loop's density control takes nodes out and renumbers the rest; the kept triangulation
+// must then be the one of the remaining points, numbered as they are, and moves go on from it.
+TEST(Delaunay3d, RemovingPointsRenumbersTheRestAsACompactionDoes) {
+  std::vector<Vec3> points = random_points3(5000, 12);
+  Tetrahedralization3 kept;
+  kept.build(points, 1);
+  const std::vector<int32_t> gone = {0, 3, 4, 999, 2500, 4999};
+  ASSERT_TRUE(kept.remove(gone));
+  std::vector<Vec3> rest;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!std::binary_search(gone.begin(), gone.end(), static_cast<int32_t>(i)))
+      rest.push_back(points[i]);
+  const auto after = kept.move(rest, {});
+  ASSERT_TRUE(after.has_value());
+  EXPECT_EQ(*after, delaunay_tetrahedralize(rest, 1));
+  rest[10] = rest[10] + Vec3{0.02, 0.01, -0.01};
+  const auto moved = kept.move(rest, {10});
+  ASSERT_TRUE(moved.has_value());
+  EXPECT_EQ(*moved, delaunay_tetrahedralize(rest, 1));
+}
+
+// With coinciding points the kept triangulation cannot say which index a vertex stands for.
+TEST(Delaunay3d, RemovingFromATriangulationWithDuplicatesStartsAfresh) {
+  std::vector<Vec3> points = lattice(2);
+  points.push_back(points[13]);
+  Tetrahedralization3 kept;
+  kept.build(points, 1);
+  EXPECT_FALSE(kept.remove({0}));
+  points.erase(points.begin());
+  EXPECT_FALSE(kept.move(points, {}).has_value());
 }
 
 }  // namespace
