@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/geometry3d/surface_self_intersection3.h"
 
 namespace meshd {
 namespace {
@@ -128,6 +129,12 @@ TriangleSurface3 build_triangle_surface3(std::vector<Vec3> vertices,
                           " has no triangle on its other side: the surface must be closed");
       }
     }
+
+  if (const auto crossing = find_surface_self_intersection3(vertices, tris)) {
+    throw_invalid(tri_field, "triangles " + std::to_string((*crossing)[0]) + " and " +
+                                 std::to_string((*crossing)[1]) +
+                                 " cross: the surface intersects itself, so it has no inside");
+  }
 
   // Outward: a surface given inward encloses a negative volume.
   double volume6 = 0.0;

@@ -7,8 +7,9 @@
 // enclosed volume; a surface given inward is turned), none of zero area. Under those, the sign of
 // (p - c) . n, with c the nearest surface point and n the pseudonormal of the face, edge or vertex
 // c lies on, is the side p is on (Baerentzen and Aanaes, 2005): the distance is exact and its
-// sign agrees with the winding number everywhere off the surface. Self-intersections are not
-// checked: a surface that crosses itself gets a distance, but not a meaningful inside.
+// sign agrees with the winding number everywhere off the surface. A surface that crosses itself
+// (or touches itself at a vertex) has no meaningful inside and is refused
+// (surface_self_intersection3.h).
 //
 // The arrays are flat, and TriangleSurface3View points at them, so that the evaluator
 // (surface_sdf3.cuh) reads them on the host and on the device alike.
@@ -73,7 +74,7 @@ constexpr double kSharpSurfaceAngleDeg = 35.0;
 // Throws Error(kInvalidArgument) naming `path` + ".vertices" or ".triangles" and the first
 // offending triangle or edge: fewer than 4 triangles, an index out of range, a triangle of zero
 // area, an edge not used exactly twice in opposite directions (open, non-manifold or
-// inconsistently oriented), a surface enclosing no volume.
+// inconsistently oriented), two triangles that cross, a surface enclosing no volume.
 TriangleSurface3 build_triangle_surface3(std::vector<Vec3> vertices,
                                          const std::vector<std::array<int32_t, 3>>& triangles,
                                          const std::string& path);

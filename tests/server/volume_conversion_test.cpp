@@ -161,6 +161,12 @@ TEST(VolumeConversion, PolyhedraAreCheckedAndCounted) {
   r = cube_polyhedron_request();
   r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->mutable_triangles()->Truncate(33);
   testing::expect_invalid(r, p + ".triangles", "must be closed");
+  r = cube_polyhedron_request();
+  // Vertex 7, the corner (1, 1, 1), pulled down through the bottom face.
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->set_vertices(21, 0.2);
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->set_vertices(22, 0.3);
+  r.mutable_volume()->mutable_geometry()->mutable_polyhedron()->set_vertices(23, -3.0);
+  testing::expect_invalid(r, p + ".triangles", "the surface intersects itself");
   ConversionLimits small;
   small.max_polyhedron_triangles = 11;
   testing::expect_error(cube_polyhedron_request(), ErrorCode::kResourceExhausted, p + ".triangles",

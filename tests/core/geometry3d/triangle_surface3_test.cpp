@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <variant>
@@ -179,6 +180,51 @@ TEST(TriangleSurface3, BadSurfacesAreNamed) {
   Polyhedron outside = cube;
   outside.triangles[5][2] = 8;
   expect_refused(outside, f, "outside [0, 8)");
+}
+
+// The cube [lo, hi]^3 added to `p`, its corner k the vertex `shared[k]` where that is not -1.
+void add_cube(Polyhedron& p, double lo, double hi,
+              std::array<int32_t, 8> shared = {-1, -1, -1, -1, -1, -1, -1, -1}) {
+  const auto cube = std::get<Polyhedron>(cube_polyhedron(lo, hi).node);
+  std::array<int32_t, 8> index{};
+  for (int k = 0; k < 8; ++k) {
+    index[k] = shared[k];
+    if (index[k] >= 0) continue;
+    index[k] = static_cast<int32_t>(p.vertices.size());
+    p.vertices.push_back(cube.vertices[k]);
+  }
+  for (const auto& t : cube.triangles)
+    p.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+}
+
+TEST(TriangleSurface3, SurfacesThatCrossThemselvesAreRefused) {
+  const std::string f = "volume.geometry.polyhedron.triangles";
+  // Two closed cubes in one surface: apart they are a solid of two parts; overlapping, the
+  // sheets cross and the overlap is inside twice.
+  Polyhedron apart;
+  add_cube(apart, -1, 1);
+  add_cube(apart, 2, 3);
+  EXPECT_NO_THROW(build_triangle_surface3(apart.vertices, apart.triangles, "p"));
+  Polyhedron overlapping;
+  add_cube(overlapping, -1, 1);
+  add_cube(overlapping, 0, 2);
+  expect_refused(overlapping, f, "intersects itself");
+  // The second cube's corner 0 is the first's corner 7: the surface touches itself there.
+  Polyhedron touching;
+  add_cube(touching, -1, 1);
+  add_cube(touching, 1, 3, {7, -1, -1, -1, -1, -1, -1, -1});
+  expect_refused(touching, f, "intersects itself");
+  // A top corner of a cube pulled down through the bottom face: its triangles pierce it.
+  Polyhedron pierced = std::get<Polyhedron>(cube_polyhedron(-1, 1).node);
+  pierced.vertices[7] = {0.2, 0.3, -3};
+  expect_refused(pierced, f, "cross");
+}
+
+// A fine sphere (some 40k triangles, as a scanned part has) passes the check whole.
+TEST(TriangleSurface3, AFineSphereDoesNotCrossItself) {
+  const Polyhedron sphere = uv_sphere(1.0, 100, 200);
+  const TriangleSurface3 s = build_triangle_surface3(sphere.vertices, sphere.triangles, "p");
+  EXPECT_EQ(s.triangles.size(), 3 * sphere.triangles.size());
 }
 
 }  // namespace
