@@ -28,11 +28,14 @@ MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer*
   out.stats.iterations = relaxed.iterations;
   out.stats.converged = relaxed.converged;
   out.stats.retriangulations = relaxed.retriangulations;
+  out.stats.partial_retriangulations = relaxed.partial_retriangulations;
   out.stats.removed = relaxed.removed;
   out.stats.fixed = relaxed.fixed;
   out.stats.unused_fixed = relaxed.unused_fixed;
   out.stats.optimizer_moves = relaxed.optimizer_moves;
   out.stats.t_relax = relaxed.t_relax;
+  out.stats.t_triangulation = relaxed.t_triangulate;
+  out.stats.t_steps = relaxed.t_steps;
   out.stats.t_slivers = relaxed.t_slivers;
   out.mesh = assemble_mesh3d(geometry.domain(), std::move(relaxed));
   out.quality = summarize_tet_quality(out.mesh);

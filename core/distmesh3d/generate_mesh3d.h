@@ -20,13 +20,16 @@ struct RunStats3 {
   int iterations = 0;
   bool converged = false;
   int retriangulations = 0;
+  int partial_retriangulations = 0;  // of those, moves of a few nodes in the kept triangulation
   int64_t removed = 0;  // nodes density control took out, and free nodes on another node
   int64_t fixed = 0;    // fixed nodes kept (sharp corners and edge samples)
   int64_t unused_fixed = 0;
   int64_t optimizer_moves = 0;
-  double t_relax = 0.0;    // seconds
-  double t_slivers = 0.0;  // seconds
-  double t_total = 0.0;    // seconds, compilation and boundary faces included
+  double t_relax = 0.0;          // seconds
+  double t_triangulation = 0.0;  // seconds of t_relax spent triangulating
+  double t_steps = 0.0;          // seconds of t_relax spent in the engine's steps
+  double t_slivers = 0.0;        // seconds
+  double t_total = 0.0;          // seconds, compilation and boundary faces included
 };
 
 struct MeshResult3 {

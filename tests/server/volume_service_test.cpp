@@ -56,6 +56,14 @@ TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
   EXPECT_GT(r.done.quality().q_min(), 0.2);
   EXPECT_GT(r.done.quality().min_dihedral_deg(), 10.0);
   EXPECT_GT(r.done.stats().fixed_nodes(), 8);
+  // Full triangulations are those that did not just move a few nodes; their time and the steps'
+  // are parts of the job's.
+  const v1::RunStats& stats = r.done.stats();
+  EXPECT_GE(stats.full_triangulations(), 1);
+  EXPECT_LE(stats.full_triangulations(), stats.retriangulations());
+  EXPECT_GT(stats.t_triangulation(), 0.0);
+  EXPECT_GT(stats.t_forces(), 0.0);
+  EXPECT_LT(stats.t_triangulation() + stats.t_forces() + stats.t_slivers(), stats.t_mesh());
   // The surface's nodes on the box or the ball within 1e-3 h0, by the exact distance here.
   double farthest = 0.0;
   for (const auto& f : mesh.boundary_faces)
