@@ -5,7 +5,7 @@
 
 #include "core/common/error.h"
 #include "core/delaunay/delaunay3d.h"
-#include "core/distmesh3d/engine3.h"
+#include "core/distmesh3d/cpu_engine3.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
 #include "core/distmesh3d/settle_surface3d.h"

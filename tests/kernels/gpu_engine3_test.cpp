@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/common/error.h"
+#include "core/distmesh3d/cpu_engine3.h"
 #include "core/distmesh3d/distmesh3d.h"
-#include "core/distmesh3d/engine3.h"
 #include "core/distmesh3d/generate_mesh3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/initial_points3d.h"
