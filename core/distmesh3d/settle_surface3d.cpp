@@ -15,15 +15,19 @@ namespace {
 constexpr size_t kNodesPerChunk = 32;
 // A stuck node may move once its neighbours have: rounds while some move.
 constexpr int kRounds = 4;
+// settle_pushing: rounds of pushes, and the quality a pushed tetrahedron must reach.
+constexpr int kPushRounds = 3;
+constexpr double kPushedQuality = 0.02;
 
 class SurfaceSettler {
  public:
   SurfaceSettler(const Domain3& domain, double step, std::vector<Vec3>& points,
-                 const std::vector<std::array<int32_t, 4>>& tets)
+                 const std::vector<std::array<int32_t, 4>>& tets, int64_t fixed)
       : domain_(domain),
         step_(step),
         p_(points),
         t_(tets),
+        fixed_(fixed),
         on_surface_(points.size(), 0),
         stars_(points.size(), tets),
         drop_(tets.size(), 0) {
@@ -68,14 +72,87 @@ class SurfaceSettler {
         }
     }
     if (!best.fits()) return -1;
-    stars_.for_each(v, [&](int32_t t) {
-      if (!drop_[t] && is_cap(t) && quality_with(t, v, to) < kCapQuality) drop_[t] = 1;
-    });
+    return move_to(v, to, best.caps);
+  }
+
+  // For a node that settle left where it was: a few tetrahedra of its star lay flat or turned
+  // over at every place tried, each over a face of interior nodes that the nearest point lies
+  // on or beyond (two mirror-image tetrahedra of a lattice-like corner of the cube minus a ball,
+  // each 0.001 short of flat, left a node 0.53 h0 inside). Those interior nodes step away from
+  // the face, along the gradient of the tetrahedron's volume, by the least of a few lengths that
+  // keeps their own stars positive, until every tetrahedron fits with v at the nearest point;
+  // otherwise all goes back. Moves nodes outside v's star: run on one thread.
+  int settle_pushing(int32_t v) {
+    const double offset = std::fabs(domain_.distance(p_[v]));
+    const Vec3 to = project_to_boundary3d(domain_, p_[v], step_);
+    if (!(std::fabs(domain_.distance(to)) < offset)) return -1;
+    std::vector<std::pair<int32_t, Vec3>> saved = {{v, p_[v]}};
     p_[v] = to;
-    return best.caps;
+    const auto stays = [&](int32_t t) {
+      return !drop_[t] && !(is_cap(t) && quality(t) < kCapQuality);
+    };
+    const auto star_positive = [&](int32_t u) {
+      bool positive = true;
+      stars_.for_each(u,
+                      [&](int32_t t) { positive = positive && (!stays(t) || quality(t) > 0.0); });
+      return positive;
+    };
+    for (int round = 0; round < kPushRounds && !star_positive(v); ++round) {
+      stars_.for_each(v, [&](int32_t t) {
+        if (!stays(t) || quality(t) > kPushedQuality) return;
+        for (int k = 0; k < 4; ++k) {
+          const int32_t u = t_[t][k];
+          if (u == v || u < fixed_ || on_surface_[u]) continue;
+          const Vec3 away = volume_gradient(t, k);
+          const double edge = stars_.mean_edge(u, p_, t_);
+          const Vec3 from = p_[u];
+          for (double f : {0.05, 0.1, 0.2}) {
+            p_[u] = from + f * edge * away;
+            if (domain_.distance(p_[u]) < 0.0 && star_positive(u) && quality(t) > kPushedQuality)
+              break;
+            p_[u] = from;
+          }
+          if (!(p_[u] == from)) saved.push_back({u, from});
+        }
+      });
+    }
+    bool fits = star_positive(v);
+    for (size_t i = 1; i < saved.size() && fits; ++i) fits = star_positive(saved[i].first);
+    if (!fits) {
+      for (auto it = saved.rbegin(); it != saved.rend(); ++it) p_[it->first] = it->second;
+      return -1;
+    }
+    p_[v] = saved[0].second;
+    return move_to(v, to, outcome(v, to).caps);
   }
 
  private:
+  // v to x, its caps that fall under kCapQuality dropped; returns `caps`.
+  int move_to(int32_t v, Vec3 x, int caps) {
+    stars_.for_each(v, [&](int32_t t) {
+      if (!drop_[t] && is_cap(t) && quality_with(t, v, x) < kCapQuality) drop_[t] = 1;
+    });
+    p_[v] = x;
+    return caps;
+  }
+
+  double quality(int32_t t) const {
+    const auto& v = t_[t];
+    return oriented_tet_radius_ratio(p_[v[0]], p_[v[1]], p_[v[2]], p_[v[3]]);
+  }
+
+  // The unit direction in which corner k of t moves to grow its volume the fastest.
+  Vec3 volume_gradient(int32_t t, int k) const {
+    Vec3 q[4];
+    for (int i = 0; i < 4; ++i) q[i] = p_[t_[t][(k + i) % 4]];
+    // 6 V of (q0, q1, q2, q3) is (q1 - q0) . ((q2 - q1) x (q3 - q1)), whose gradient in q0 is
+    // -(q2 - q1) x (q3 - q1); a rotation by an odd k turns the orientation over.
+    Vec3 n = cross(q[2] - q[1], q[3] - q[1]);
+    if (k % 2 == 0) n = -1.0 * n;
+    const double length = norm(n);
+    return length > 0.0 ? (1.0 / length) * n : Vec3{};
+  }
+
   double quality_with(int32_t t, int32_t v, Vec3 x) const {
     Vec3 q[4];
     for (int k = 0; k < 4; ++k) q[k] = t_[t][k] == v ? x : p_[t_[t][k]];
@@ -127,6 +204,7 @@ class SurfaceSettler {
   double step_;
   std::vector<Vec3>& p_;
   const std::vector<std::array<int32_t, 4>>& t_;
+  int64_t fixed_;
   std::vector<char> on_surface_;
   TetStars stars_;
   std::vector<char> drop_;
@@ -136,7 +214,7 @@ class SurfaceSettler {
 SurfaceSettling settle_round(const Domain3& domain, double step, std::vector<Vec3>& points,
                              std::vector<std::array<int32_t, 4>>& tets, int64_t fixed,
                              ThreadPool* pool) {
-  SurfaceSettler settler(domain, step, points, tets);
+  SurfaceSettler settler(domain, step, points, tets, fixed);
   // Off the boundary: farther than the gradient's step, far below any tolerance on it.
   std::vector<int32_t> off;
   for (auto v = static_cast<int32_t>(fixed); v < static_cast<int32_t>(points.size()); ++v)
@@ -147,7 +225,8 @@ SurfaceSettling settle_round(const Domain3& domain, double step, std::vector<Vec
     for_chunks(pool, group.size(), kNodesPerChunk, [&](size_t, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) caps[i] = settler.settle(group[i]);
     });
-    for (int c : caps) {
+    for (size_t i = 0; i < group.size(); ++i) {
+      const int c = caps[i] >= 0 ? caps[i] : settler.settle_pushing(group[i]);
       if (c < 0) {
         ++out.stuck;
         continue;

@@ -8,8 +8,10 @@
 // over, the projection of its surface neighbours' centre, or else the place on the boundary
 // around the nearest point where its star's worst tetrahedron is best. A tetrahedron of its star
 // whose other three nodes are on the surface too becomes a flat cap over the boundary by that
-// move; one left under kCapQuality goes, as the centroid filter would have dropped it. A node
-// that no such place fits (each turns another tetrahedron over) stays, counted as stuck; a few
+// move; one left under kCapQuality goes, as the centroid filter would have dropped it. Where no
+// such place fits (each lays another tetrahedron flat or turns it over), the interior nodes of
+// those tetrahedra step away from v's nearest point, and v goes there, when that leaves every
+// tetrahedron they share positive. A node that still fits nowhere stays, counted as stuck; a few
 // rounds give it another chance once its neighbours have moved.
 //
 // Measured (bench/RESULTS.md): the pits were 0.2-0.57 h0 deep; after this every surface node of

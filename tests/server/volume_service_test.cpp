@@ -76,6 +76,27 @@ TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
   EXPECT_NEAR(r.done.quality().max_surface_offset(), farthest, 1e-9);
 }
 
+// A request whose surface settling once left a node 0.53 h0 inside the ball's face: at this h0
+// the lattice-like corner of the cube minus a ball put it where two mirror-image tetrahedra
+// would lie flat with it on the surface, until their interior nodes step aside
+// (settle_surface3d.cpp).
+TEST(VolumeService, EverySurfaceNodeSettlesOnTheBoundary) {
+  TestServer server;
+  auto stub = server.stub();
+  const double h0 = 0.10184;
+  const StreamResult r = generate(*stub, parse(R"(
+  volume { geometry { difference {
+    base { name: "box" box { min { x: -1 y: -1 z: -1 } max { x: 1 y: 1 z: 1 } } }
+    subtract { name: "ball" sphere { radius: 0.5 } } } } }
+  h0: )" + std::to_string(h0)));
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  ASSERT_TRUE(r.has_done);
+  const TetValidityReport report = check_tet_validity(cli::to_tet_mesh(r.mesh));
+  EXPECT_TRUE(report.valid()) << (report.problems.empty() ? "" : report.problems[0]);
+  EXPECT_LT(r.done.quality().max_surface_offset(), 1e-3 * h0);
+  EXPECT_GT(r.done.quality().min_dihedral_deg(), 10.0);
+}
+
 // The same part with its cube given as a closed triangle surface.
 constexpr const char* kPolyhedronMinusBall = R"(
   volume { geometry { difference {
