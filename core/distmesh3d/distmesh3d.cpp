@@ -127,22 +127,21 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       if (delaunay.remove(t.coincident))
         tetrahedralize([&] { return delaunay.move(n.points, {}); });
     }
-    measure_spacing3d(t, n);
     counts.t_triangulate += seconds_since(begin);
     return partial;
   };
   Topology3 topology;
   bool retriangulate = true;
-  bool triangulated = false;  // once, a kept triangulation and the nodes' spacing exist
-  int last_partial = -1;      // the iteration of the last partial retriangulation
+  int last_partial = -1;  // the iteration of the last partial retriangulation
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
     check_cancel();
     // 3. Retriangulate once a node drifted ttol of its length.
     if (retriangulate) {
       engine->sync();
       std::optional<std::vector<int32_t>> moved;
-      // Two partial ones in a row would mean the drifting node was not among those moved.
-      if (triangulated && last_partial != iteration - 1) {
+      // Not before the first triangulation (which measures the nodes' spacing); two partial ones
+      // in a row would mean the drifting node was not among those moved.
+      if (!nodes.spacing.empty() && last_partial != iteration - 1) {
         moved = drifted_nodes3d(nodes, 0.5 * params.ttol);
         if (moved->size() > kPartialMost ||
             static_cast<double>(moved->size()) > kPartialShare * nodes.points.size())
@@ -152,7 +151,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
         last_partial = iteration;
         ++stats.partial_retriangulations;
       }
-      triangulated = true;
+      measure_spacing3d(topology, nodes);
       engine->start(nodes, topology);
       ++stats.retriangulations;
     }

@@ -72,7 +72,7 @@ class SurfaceSettler {
         }
     }
     if (!best.fits()) return -1;
-    return move_to(v, to, best.caps);
+    return move_to(v, to);
   }
 
   // For a node that settle left where it was: a few tetrahedra of its star lay flat or turned
@@ -86,54 +86,63 @@ class SurfaceSettler {
     const double offset = std::fabs(domain_.distance(p_[v]));
     const Vec3 to = project_to_boundary3d(domain_, p_[v], step_);
     if (!(std::fabs(domain_.distance(to)) < offset)) return -1;
-    std::vector<std::pair<int32_t, Vec3>> saved = {{v, p_[v]}};
+    const Vec3 at = p_[v];
     p_[v] = to;
-    const auto stays = [&](int32_t t) {
-      return !drop_[t] && !(is_cap(t) && quality(t) < kCapQuality);
-    };
-    const auto star_positive = [&](int32_t u) {
-      bool positive = true;
-      stars_.for_each(u,
-                      [&](int32_t t) { positive = positive && (!stays(t) || quality(t) > 0.0); });
-      return positive;
-    };
-    for (int round = 0; round < kPushRounds && !star_positive(v); ++round) {
+    std::vector<std::pair<int32_t, Vec3>> pushed;  // interior nodes moved, and where they were
+    for (int round = 0; round < kPushRounds && !star_positive(v); ++round)
       stars_.for_each(v, [&](int32_t t) {
-        if (!stays(t) || quality(t) > kPushedQuality) return;
-        for (int k = 0; k < 4; ++k) {
-          const int32_t u = t_[t][k];
-          if (u == v || u < fixed_ || on_surface_[u]) continue;
-          const Vec3 away = volume_gradient(t, k);
-          const double edge = stars_.mean_edge(u, p_, t_);
-          const Vec3 from = p_[u];
-          for (double f : {0.05, 0.1, 0.2}) {
-            p_[u] = from + f * edge * away;
-            if (domain_.distance(p_[u]) < 0.0 && star_positive(u) && quality(t) > kPushedQuality)
-              break;
-            p_[u] = from;
-          }
-          if (!(p_[u] == from)) saved.push_back({u, from});
-        }
+        if (stays(t) && quality(t) <= kPushedQuality)
+          for (int k = 0; k < 4; ++k) push_away(t, k, v, pushed);
       });
-    }
     bool fits = star_positive(v);
-    for (size_t i = 1; i < saved.size() && fits; ++i) fits = star_positive(saved[i].first);
-    if (!fits) {
-      for (auto it = saved.rbegin(); it != saved.rend(); ++it) p_[it->first] = it->second;
-      return -1;
-    }
-    p_[v] = saved[0].second;
-    return move_to(v, to, outcome(v, to).caps);
+    for (const auto& [u, from] : pushed) fits = fits && star_positive(u);
+    p_[v] = at;
+    if (fits) return move_to(v, to);
+    for (auto it = pushed.rbegin(); it != pushed.rend(); ++it) p_[it->first] = it->second;
+    return -1;
   }
 
  private:
-  // v to x, its caps that fall under kCapQuality dropped; returns `caps`.
-  int move_to(int32_t v, Vec3 x, int caps) {
+  // v to x, its caps that fall under kCapQuality dropped; returns how many.
+  int move_to(int32_t v, Vec3 x) {
+    int caps = 0;
     stars_.for_each(v, [&](int32_t t) {
-      if (!drop_[t] && is_cap(t) && quality_with(t, v, x) < kCapQuality) drop_[t] = 1;
+      if (!drop_[t] && capped(t, quality_with(t, v, x))) {
+        drop_[t] = 1;
+        ++caps;
+      }
     });
     p_[v] = x;
     return caps;
+  }
+
+  // A cap of quality q goes (the rule of settle's moves).
+  bool capped(int32_t t, double q) const { return is_cap(t) && q < kCapQuality; }
+  // t is kept with the nodes where they are now.
+  bool stays(int32_t t) const { return !drop_[t] && !capped(t, quality(t)); }
+  bool star_positive(int32_t u) const {
+    bool positive = true;
+    stars_.for_each(u, [&](int32_t t) { positive = positive && (!stays(t) || quality(t) > 0.0); });
+    return positive;
+  }
+
+  // settle_pushing's step for corner k of t (a free interior node other than v): away from the
+  // opposite face by the least of a few lengths that lifts t over kPushedQuality and keeps the
+  // node inside with its star positive; the node and where it was join `pushed`.
+  void push_away(int32_t t, int k, int32_t v, std::vector<std::pair<int32_t, Vec3>>& pushed) {
+    const int32_t u = t_[t][k];
+    if (u == v || u < fixed_ || on_surface_[u]) return;
+    const Vec3 away = volume_gradient(t, k);
+    const double edge = stars_.mean_edge(u, p_, t_);
+    const Vec3 from = p_[u];
+    for (double f : {0.05, 0.1, 0.2}) {
+      p_[u] = from + f * edge * away;
+      if (domain_.distance(p_[u]) < 0.0 && star_positive(u) && quality(t) > kPushedQuality) {
+        pushed.push_back({u, from});
+        return;
+      }
+    }
+    p_[u] = from;
   }
 
   double quality(int32_t t) const {
@@ -165,9 +174,9 @@ class SurfaceSettler {
     return true;
   }
 
-  // What moving v to x would do: the caps it drops, and the worst of the tetrahedra that stay.
+  // What moving v to x would do: the worst of the tetrahedra that stay (the caps it drops
+  // aside).
   struct Outcome {
-    int caps = 0;
     double worst = -INFINITY;
     bool fits() const { return worst > 0.0; }
   };
@@ -177,10 +186,7 @@ class SurfaceSettler {
     stars_.for_each(v, [&](int32_t t) {
       if (drop_[t]) return;
       const double q = quality_with(t, v, x);
-      if (is_cap(t) && q < kCapQuality)
-        ++o.caps;
-      else
-        o.worst = std::min(o.worst, q);
+      if (!capped(t, q)) o.worst = std::min(o.worst, q);
     });
     return o;
   }
