@@ -27,6 +27,7 @@
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/node_estimate3d.h"
 #include "core/distmesh3d/surface_offset3d.h"
+#include "core/geometry3d/compile3d.h"
 #include "core/mesh/mesh_file.h"
 #include "core/mesh3d/tet_quality.h"
 #include "core/mesh3d/tet_validity.h"
@@ -127,13 +128,15 @@ int main(int argc, char** argv) {
       double h0 = opt.h0 > 0.0 ? opt.h0 : c.h0;
       const bool uniform = c.size.terms.empty();
       const auto size = meshd::compile_size_field3(c.size, 1.0);
+      const auto program =
+          std::make_shared<const meshd::Program3>(meshd::compile_geometry3(c.shape));
       if (opt.nodes > 0.0) {
-        const meshd::GeometryDomain3 probe(c.shape, h0, size, uniform, true, INFINITY);
+        const meshd::GeometryDomain3 probe(program, h0, size, uniform, true, INFINITY);
         const meshd::Domain3& d = probe.domain();
         h0 = meshd::h0_for_node_count3d(
             meshd::survey_volume3d(d.distance, d.size, d.bounds).weighted_volume, opt.nodes);
       }
-      const meshd::GeometryDomain3 geometry(c.shape, h0, size, uniform, true, INFINITY);
+      const meshd::GeometryDomain3 geometry(program, h0, size, uniform, true, INFINITY);
       meshd::Relaxed3 best;
       for (int r = 0; r < opt.repeat; ++r) {
         meshd::Relaxed3 mesh = meshd::distmesh3d(geometry.domain(), h0, meshd::Params3{}, &pool,

@@ -23,7 +23,6 @@
 #include "client/request_file.h"
 #include "core/common/error.h"
 #include "core/common/sha256.h"
-#include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "meshd/v1/mesh.pb.h"
@@ -92,8 +91,7 @@ double median(std::vector<double> v) {
 double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, int64_t& nodes) {
   const auto t = Clock::now();
   const meshd::JobSpec spec = meshd::to_job_spec(request);
-  const meshd::MeshResult r =
-      meshd::generate_mesh(meshd::compile_problem(spec.problem), engine, nullptr, nullptr);
+  const meshd::MeshResult r = meshd::generate_mesh(spec.plane, engine, nullptr, nullptr);
   const double s = seconds_since(t);
   nodes = static_cast<int64_t>(r.mesh.points.size());
   return s;

@@ -1,13 +1,13 @@
-// A validated job: the Problem (or Problem3) to mesh and how the service runs it
-// (request_conversion makes it).
+// A validated job: its problem, compiled once when the request was converted (the worker meshes
+// that compilation), and how the service runs it (request_conversion makes it).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
 
-#include "core/distmesh/problem.h"
-#include "core/distmesh3d/problem3d.h"
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh3d/compiled_problem3d.h"
 
 namespace meshd {
 
@@ -26,8 +26,8 @@ struct JobOptions {
 };
 
 struct JobSpec {
-  Problem problem;                 // a plane job; unused when volume is set
-  std::optional<Problem3> volume;  // a 3D job
+  CompiledProblem plane;                   // a plane job; unused when volume is set
+  std::optional<CompiledProblem3> volume;  // a 3D job
   double estimated_nodes = 0;
   JobOptions options;
 };

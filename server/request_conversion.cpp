@@ -422,9 +422,10 @@ void check_thickness(const Problem& problem, const CompiledProblem& compiled, do
                           approx(most));
 }
 
-double check_node_count(const Problem& problem, const ConversionLimits& limits) {
-  // Throws on its own for an empty domain, a missing bbox or a fixed point outside.
-  const CompiledProblem compiled = compile_problem(problem);
+// `compiled`: compile_problem(problem), which throws on its own for an empty domain, a missing
+// bbox or a fixed point outside.
+double check_node_count(const Problem& problem, const CompiledProblem& compiled,
+                        const ConversionLimits& limits) {
   const DomainSurvey survey = survey_domain(compiled);
   const double nodes = survey.nodes;
   const double h0 = problem.h0;
@@ -502,9 +503,8 @@ JobOptions job_options(const v1::JobOptions& in, double estimated_nodes,
 
 namespace {
 
-// to_problem, also giving the estimated node count it checked.
-Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
-                double& estimated_nodes) {
+// The request's fields, each checked, as a Problem (its node count not yet checked).
+Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits) {
   Problem problem;
 
   if (request.has_volume()) {
@@ -540,24 +540,25 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits,
   problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
   problem.params = params(request);
   problem.seed = request.seed();
-
-  estimated_nodes = check_node_count(problem, limits);
   return problem;
 }
 
 }  // namespace
 
 Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits) {
-  double estimated_nodes = 0;
-  return convert(request, limits, estimated_nodes);
+  Problem problem = convert(request, limits);
+  check_node_count(problem, compile_problem(problem), limits);
+  return problem;
 }
 
 JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits) {
   JobSpec spec;
   if (request.has_volume()) {
-    spec.volume = to_problem3(request, limits, spec.estimated_nodes);
+    spec.volume = to_compiled_problem3(request, limits, spec.estimated_nodes);
   } else {
-    spec.problem = convert(request, limits, spec.estimated_nodes);
+    const Problem problem = convert(request, limits);
+    spec.plane = compile_problem(problem);
+    spec.estimated_nodes = check_node_count(problem, spec.plane, limits);
   }
   spec.options = job_options(request.options(), spec.estimated_nodes, limits);
   if (spec.volume && spec.options.snapshot_every > 0) {

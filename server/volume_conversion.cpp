@@ -8,10 +8,10 @@
 #include <utility>
 
 #include "core/common/error.h"
+#include "core/distmesh3d/compiled_problem3d.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/node_estimate3d.h"
 #include "core/geometry3d/bounds3.h"
-#include "core/geometry3d/compile3d.h"
 #include "core/geometry3d/sdf3_eval.cuh"
 #include "server/field_checks.h"
 
@@ -322,27 +322,23 @@ Params3 params3(const v1::MeshRequest& request) {
 // ---------------------------------------------------------------------------------------------
 // The node count, from the domain's volume weighted by the size field (node_estimate3d.h).
 
-double check_node_count3(const Problem3& problem, const ConversionLimits& limits) {
-  const Program3 program = compile_geometry3(problem.geometry);
-  const Box3 bounds = domain_bounds3(program);
-  const Program3View view = program.view();
-  const SizeRange range = size_range3(problem.size);
-  const double low = range.low;
-  const auto size = compile_size_field3(problem.size);
+double check_node_count3(const CompiledProblem3& problem, const ConversionLimits& limits) {
+  const Box3 bounds = domain_bounds3(*problem.geometry);
+  const Program3View view = problem.geometry->view();
+  const double low = problem.range.low;
   // The survey needs the sign, and the depth no deeper than the thickness check looks.
-  const double band = kExactDistanceEdges * problem.h0 * range.high;
-  const VolumeSurvey3 survey = survey_volume3d(
-      [view, band](Vec3 p) { return eval_sdf3(view, p, nullptr, band); },
-      size ? [&size, low](Vec3 p) { return size(p) / low; } : std::function<double(Vec3)>{},
-      bounds);
+  const double band = problem.exact_band;
+  const VolumeSurvey3 survey =
+      survey_volume3d([view, band](Vec3 p) { return eval_sdf3(view, p, nullptr, band); },
+                      size_callable3(problem.size, problem.uniform), bounds);
   const double volume = survey.weighted_volume;
   if (!(volume > 0)) {
     throw_invalid("volume.geometry",
                   "no point of a 32^3 grid over the domain's box lies inside: "
                   "the domain is empty or far thinner than its box");
   }
-  const double h0 = problem.h0;
-  const double nodes = node_count3d(volume, h0 * low);
+  const double h0 = problem.request_h0;
+  const double nodes = node_count3d(volume, problem.h0);
   if (!(nodes >= 4)) {
     throw_invalid("h0", "h0 = " + num(h0) + " gives about " + approx(nodes) +
                             " nodes; at least 4 are needed: h0 must be at most about " +
@@ -369,10 +365,8 @@ double check_node_count3(const Problem3& problem, const ConversionLimits& limits
   return nodes;
 }
 
-}  // namespace
-
-Problem3 to_problem3(const v1::MeshRequest& request, const ConversionLimits& limits,
-                     double& estimated_nodes) {
+// The request's fields, each checked, as a Problem3 (its node count not yet checked).
+Problem3 convert3(const v1::MeshRequest& request, const ConversionLimits& limits) {
   // The plane fields mean nothing to a volume: refuse them rather than ignore them.
   if (request.has_geometry())
     throw_invalid("geometry", "must be unset when volume is set (a request is 2D or 3D)");
@@ -390,8 +384,23 @@ Problem3 to_problem3(const v1::MeshRequest& request, const ConversionLimits& lim
   problem.h0 = positive(request.h0(), "h0");
   problem.auto_features = volume.has_auto_features() ? volume.auto_features() : true;
   problem.params = params3(request);
-  estimated_nodes = check_node_count3(problem, limits);
   return problem;
+}
+
+}  // namespace
+
+Problem3 to_problem3(const v1::MeshRequest& request, const ConversionLimits& limits,
+                     double& estimated_nodes) {
+  Problem3 problem = convert3(request, limits);
+  estimated_nodes = check_node_count3(compile_problem3(problem), limits);
+  return problem;
+}
+
+CompiledProblem3 to_compiled_problem3(const v1::MeshRequest& request,
+                                      const ConversionLimits& limits, double& estimated_nodes) {
+  CompiledProblem3 compiled = compile_problem3(convert3(request, limits));
+  estimated_nodes = check_node_count3(compiled, limits);
+  return compiled;
 }
 
 }  // namespace meshd

@@ -94,8 +94,8 @@ bool Worker::rebuild_engine() {
 }
 
 EncodedResult Worker::run_plane(const Job& job, Observer& observer, Job::Clock::time_point t) {
-  const MeshResult result = generate_mesh(compile_problem(job.spec().problem), engine_->engine(),
-                                          &observer, job.cancel_flag());
+  const MeshResult result =
+      generate_mesh(job.spec().plane, engine_->engine(), &observer, job.cancel_flag());
   const double t_mesh = seconds_since(t);
   EncodedResult encoded = encode_result(result);
   spdlog::info(

@@ -10,17 +10,12 @@
 
 namespace meshd {
 
-MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer* observer,
+MeshResult3 generate_mesh3d(const CompiledProblem3& problem, ThreadPool* pool, Observer* observer,
                             const std::atomic<bool>* cancel, Engine3* engine) {
   const auto start = std::chrono::steady_clock::now();
-  // The loop spaces its finest nodes h0 apart wherever h is smallest: rescale so that h0 means
-  // the edge length where h is at its lowest bound, as in 2D.
-  const SizeRange range = size_range3(problem.size);
-  const double low = range.low;
-  const double h0 = problem.h0 * low;
-  const double band = kExactDistanceEdges * h0 * (range.high / low);
-  const GeometryDomain3 geometry(problem.geometry, h0, compile_size_field3(problem.size, low),
-                                 problem.size.terms.empty(), problem.auto_features, band);
+  const double h0 = problem.h0;
+  const GeometryDomain3 geometry(problem.geometry, h0, problem.size, problem.uniform,
+                                 problem.auto_features, problem.exact_band);
 
   Relaxed3 relaxed =
       distmesh3d(geometry.domain(), h0, problem.params, pool, observer, cancel, engine);
@@ -44,6 +39,11 @@ MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer*
   out.stats.t_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+MeshResult3 generate_mesh3d(const Problem3& problem, ThreadPool* pool, Observer* observer,
+                            const std::atomic<bool>* cancel, Engine3* engine) {
+  return generate_mesh3d(compile_problem3(problem), pool, observer, cancel, engine);
 }
 
 }  // namespace meshd

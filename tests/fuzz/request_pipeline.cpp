@@ -72,7 +72,7 @@ void run_volume_input(v1::MeshRequest& request, JobSpec spec) {
     spec = to_job_spec(request, fuzz_limits());
   }
   const double estimated_nodes = std::min(spec.estimated_nodes, kMeshNodes);
-  Problem3& problem = *spec.volume;
+  CompiledProblem3& problem = *spec.volume;
   if (problem.params.max_iterations > kMaxIterations)
     problem.params.max_iterations = kMaxIterations;
   const std::atomic<bool> cancel{false};
@@ -137,10 +137,10 @@ void run_request_input(const uint8_t* data, size_t size) {
       spec = to_job_spec(request, fuzz_limits());
     }
     const double estimated_nodes = std::min(spec.estimated_nodes, kMeshNodes);
-    Params& params = spec.problem.params;
+    const CompiledProblem& compiled = spec.plane;
+    Params& params = spec.plane.params;
     if (params.max_iterations > kMaxIterations) params.max_iterations = kMaxIterations;
     if (params.fscale > kMaxFscale) params.fscale = kMaxFscale;
-    const CompiledProblem compiled = compile_problem(spec.problem);
 
     static ThreadPool pool(1);  // the caller's thread alone: deterministic, no thread churn
     CpuEngine engine(pool);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/topology3d.h"
+#include "core/geometry3d/compile3d.h"
 #include "core/mesh3d/tet_validity.h"
 #include "kernels/gpu_engine.h"
 
@@ -124,7 +126,8 @@ TEST(GpuEngine3, StepsTheBallAsTheCpuDoes) {
 TEST(GpuEngine3, StepsEveryPartOfACompiledGeometryAndAGradedField) {
   SKIP_WITHOUT_GPU3();
   const SizeField3 size = graded_towards_origin();
-  const GeometryDomain3 solid(mixed_solid(), 0.08, compile_size_field3(size, 1.0), false, true,
+  const GeometryDomain3 solid(std::make_shared<const Program3>(compile_geometry3(mixed_solid())),
+                              0.08, compile_size_field3(size, 1.0), false, true,
                               kExactDistanceEdges * 0.08 * 2.5);
   ASSERT_NE(solid.domain().size_field, nullptr);
   ASSERT_FALSE(solid.domain().fixed.empty());

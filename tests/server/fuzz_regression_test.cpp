@@ -147,10 +147,9 @@ struct Meshed {
 
 Meshed mesh(const std::string& text) {
   Meshed m{to_job_spec(parse(text)), {}};
-  const CompiledProblem compiled = compile_problem(m.spec.problem);
   ThreadPool pool(1);
   CpuEngine engine(pool);
-  m.result = generate_mesh(compiled, engine, nullptr, nullptr);
+  m.result = generate_mesh(m.spec.plane, engine, nullptr, nullptr);
   return m;
 }
 

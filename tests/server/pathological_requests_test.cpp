@@ -456,8 +456,8 @@ TEST(Pathological, NotConvergedStopsAtMaxIterations) {
   const JobSpec spec =
       to_job_spec(parse("geometry { rectangle { min { x: -1 y: -1 } max { x: 1 y: 1 } } } "
                         "h0: 0.1 params { max_iterations: 3 }"));
-  ASSERT_EQ(spec.problem.params.max_iterations, 3);
-  const CompiledProblem compiled = compile_problem(spec.problem);
+  ASSERT_EQ(spec.plane.params.max_iterations, 3);
+  const CompiledProblem& compiled = spec.plane;
   ThreadPool pool(1);
   CpuEngine engine(pool);
   const MeshResult result = generate_mesh(compiled, engine, nullptr, nullptr);

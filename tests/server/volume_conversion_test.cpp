@@ -1,5 +1,7 @@
 // Volume (3D) requests through the conversion layer: what a good one becomes, and every class of
 // bad field named by its path with the allowed range.
+#include "server/volume_conversion.h"
+
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
@@ -32,9 +34,8 @@ void expect_invalid(const std::string& text, const std::string& field, const std
 constexpr const char* kBall = "volume { geometry { sphere { radius: 1 } } } h0: 0.2 ";
 
 TEST(VolumeConversion, ABallBecomesAProblem3WithItsDefaultsAndEstimate) {
-  const JobSpec spec = to_job_spec(parse(std::string(kBall) + "seed: 7"));
-  ASSERT_TRUE(spec.volume.has_value());
-  const Problem3& p = *spec.volume;
+  double estimated_nodes = 0;
+  const Problem3 p = to_problem3(parse(std::string(kBall) + "seed: 7"), {}, estimated_nodes);
   ASSERT_TRUE(std::holds_alternative<Sphere>(p.geometry.node));
   EXPECT_EQ(std::get<Sphere>(p.geometry.node).radius, 1.0);
   EXPECT_EQ(p.geometry.path, "volume.geometry");
@@ -44,11 +45,22 @@ TEST(VolumeConversion, ABallBecomesAProblem3WithItsDefaultsAndEstimate) {
   EXPECT_EQ(p.params.fscale, Params3{}.fscale);
   EXPECT_TRUE(p.params.optimize_slivers);
   // sqrt(2) (4/3 pi) / 0.2^3 = 740 nodes, up to the 64^3 grid's error.
-  EXPECT_NEAR(spec.estimated_nodes, 740.0, 30.0);
+  EXPECT_NEAR(estimated_nodes, 740.0, 30.0);
+
+  // A job keeps the compilation its estimate was checked on, for its worker.
+  const JobSpec spec = to_job_spec(parse(std::string(kBall) + "seed: 7"));
+  ASSERT_TRUE(spec.volume.has_value());
+  EXPECT_EQ(spec.estimated_nodes, estimated_nodes);
+  ASSERT_NE(spec.volume->geometry, nullptr);
+  EXPECT_EQ(spec.volume->geometry->primitives.size(), 1u);
+  EXPECT_EQ(spec.volume->request_h0, 0.2);
+  EXPECT_EQ(spec.volume->h0, 0.2);
+  EXPECT_TRUE(spec.volume->uniform);
+  EXPECT_EQ(spec.volume->params.seed, 7u);
 }
 
 TEST(VolumeConversion, ParametersSizeTermsAndNamesConvert) {
-  const JobSpec spec = to_job_spec(parse(R"(
+  const v1::MeshRequest request = parse(R"(
     volume {
       geometry { name: "part" difference {
         base { box { min { x: -1 y: -1 z: -1 } max { x: 1 y: 1 z: 1 } } }
@@ -59,8 +71,9 @@ TEST(VolumeConversion, ParametersSizeTermsAndNamesConvert) {
       auto_features: false
     }
     h0: 0.1
-    params { dptol: 0.002 cleanup: false max_iterations: 50 })"));
-  const Problem3& p = *spec.volume;
+    params { dptol: 0.002 cleanup: false max_iterations: 50 })");
+  double estimated_nodes = 0;
+  const Problem3 p = to_problem3(request, {}, estimated_nodes);
   EXPECT_FALSE(p.auto_features);
   EXPECT_EQ(p.params.dptol, 0.002);
   EXPECT_FALSE(p.params.optimize_slivers);
@@ -71,6 +84,14 @@ TEST(VolumeConversion, ParametersSizeTermsAndNamesConvert) {
   EXPECT_EQ(csg.operands[0].name, "part");  // inherited
   EXPECT_EQ(csg.operands[1].name, "hole");
   EXPECT_EQ(csg.operands[1].path, "volume.geometry.difference.subtract[0]");
+
+  // Compiled, h0 is the finest edge: the request's h0 times the field's smallest value.
+  const JobSpec spec = to_job_spec(request);
+  ASSERT_TRUE(spec.volume.has_value());
+  EXPECT_FALSE(spec.volume->uniform);
+  EXPECT_EQ(spec.volume->range.low, 0.5);
+  EXPECT_EQ(spec.volume->h0, 0.1 * 0.5);
+  EXPECT_FALSE(spec.volume->auto_features);
 }
 
 TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
@@ -142,9 +163,9 @@ v1::MeshRequest cube_polyhedron_request() {
 }
 
 TEST(VolumeConversion, PolyhedraAreCheckedAndCounted) {
-  const JobSpec spec = to_job_spec(cube_polyhedron_request());
-  ASSERT_TRUE(spec.volume.has_value());
-  const auto& poly = std::get<Polyhedron>(spec.volume->geometry.node);
+  double estimated_nodes = 0;
+  const Problem3 problem = to_problem3(cube_polyhedron_request(), {}, estimated_nodes);
+  const auto& poly = std::get<Polyhedron>(problem.geometry.node);
   EXPECT_EQ(poly.vertices.size(), 8u);
   EXPECT_EQ(poly.triangles.size(), 12u);
   const std::string p = "volume.geometry.polyhedron";
