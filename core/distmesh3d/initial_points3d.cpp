@@ -22,6 +22,12 @@ double dither_threshold3(uint64_t seed, int64_t i, int64_t j, int64_t k) {
   return static_cast<double>(t >> 11) * 0x1.0p-53;
 }
 
+// A lattice is as degenerate as a point set gets (the eight corners of every cube on one sphere),
+// which sends every in-sphere test of the first triangulation to exact arithmetic: moving each
+// point by a millionth of the lattice's side, in a direction hashed from its indices, makes the
+// first triangulation as fast as the later ones and changes nothing the loop can see.
+constexpr double kLatticeJitter = 1e-6;
+
 }  // namespace
 
 double bcc_cube_side(double h0) { return h0 * std::cbrt(std::sqrt(2.0)); }
@@ -50,9 +56,13 @@ std::vector<Vec3> initial_points3d(const Domain3& domain, double h0, double geps
     for (int64_t j = 0; j < 2 * ny - 1; ++j)
       for (int64_t i = 0; i < 2 * nx - 1; ++i) {
         if ((i & 1) != (j & 1) || (j & 1) != (k & 1)) continue;  // corners or centres only
-        const Vec3 p{b.min.x + 0.5 * a * static_cast<double>(i),
-                     b.min.y + 0.5 * a * static_cast<double>(j),
-                     b.min.z + 0.5 * a * static_cast<double>(k)};
+        const double jitter = kLatticeJitter * a;
+        const Vec3 p{b.min.x + 0.5 * a * static_cast<double>(i) +
+                         jitter * (dither_threshold3(seed + 1, i, j, k) - 0.5),
+                     b.min.y + 0.5 * a * static_cast<double>(j) +
+                         jitter * (dither_threshold3(seed + 2, i, j, k) - 0.5),
+                     b.min.z + 0.5 * a * static_cast<double>(k) +
+                         jitter * (dither_threshold3(seed + 3, i, j, k) - 0.5)};
         if (!(domain.distance(p) < geps * h0)) continue;
         const double h = domain.size ? domain.size(p) : 1.0;
         h_min = std::min(h_min, h);
