@@ -258,8 +258,9 @@ Job options (override the file's):
            "  -o FILE                write the mesh; the format follows the extension: .msh\n"
            "                         (MSH 4.1), .msh22, .vtu, .svg; may be given several times\n"
            "  --format NAME          msh41, msh41-binary, msh22, vtu or svg for every -o\n"
-           "  --frames DIR           write an SVG of each snapshot to DIR (snapshots every 10\n"
-           "                         iterations unless --snapshot-every K says otherwise)\n"
+           "  --frames DIR           write an SVG of each snapshot to DIR (of a volume, its\n"
+           "                         surface; snapshots every 10 iterations unless\n"
+           "                         --snapshot-every K says otherwise)\n"
            "  --snapshot-every K     ask for a snapshot every K iterations\n" +
            request_flags + connection +
            "\nExamples:\n"

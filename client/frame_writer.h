@@ -1,5 +1,6 @@
 // --frames DIR: an SVG of every snapshot the server streams, so that a user can watch the mesh
-// settle. Keeps the triangles of the last snapshot that carried them.
+// settle (of a volume, its surface). Keeps the triangles (tetrahedra) of the last snapshot that
+// carried them.
 #pragma once
 
 #include <array>
@@ -20,8 +21,12 @@ class FrameWriter {
   int frames() const { return frames_; }
 
  private:
+  void write_plane(const v1::Snapshot& snapshot, const std::string& path);
+  void write_volume(const v1::Snapshot& snapshot, const std::string& path);
+
   std::string dir_;
   std::vector<std::array<int32_t, 3>> triangles_;
+  std::vector<std::array<int32_t, 4>> tetrahedra_;
   int frames_ = 0;
 };
 

@@ -1,5 +1,6 @@
 #include "server/job.h"
 
+#include <type_traits>
 #include <utility>
 
 namespace meshd {
@@ -107,27 +108,52 @@ void Job::publish_progress(const v1::Progress& progress) {
   wake_subscribers();
 }
 
-void Job::publish_snapshot(int iteration, const std::vector<Vec2>& points,
-                           const std::vector<std::array<int32_t, 3>>* triangles) {
+namespace {
+
+void append_coordinates(Vec2 p, std::vector<double>& out) {
+  out.push_back(p.x);
+  out.push_back(p.y);
+}
+void append_coordinates(Vec3 p, std::vector<double>& out) {
+  out.push_back(p.x);
+  out.push_back(p.y);
+  out.push_back(p.z);
+}
+
+}  // namespace
+
+template <typename Point, size_t Corners>
+void Job::store_snapshot(int iteration, const std::vector<Point>& points,
+                         const std::vector<std::array<int32_t, Corners>>* cells) {
+  constexpr int kDimension = std::is_same_v<Point, Vec3> ? 3 : 2;
   {
     std::lock_guard lock(mutex_);
     if (state_ != JobState::kRunning) return;
     snapshot_iteration_ = iteration;
-    snapshot_points_.resize(2 * points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-      snapshot_points_[2 * i] = points[i].x;
-      snapshot_points_[2 * i + 1] = points[i].y;
-    }
-    if (triangles != nullptr) {
-      snapshot_triangles_.resize(3 * triangles->size());
-      for (size_t i = 0; i < triangles->size(); ++i) {
-        for (int k = 0; k < 3; ++k) snapshot_triangles_[3 * i + k] = (*triangles)[i][k];
-      }
+    snapshot_dimension_ = kDimension;
+    snapshot_points_.clear();
+    snapshot_points_.reserve(kDimension * points.size());
+    for (const Point& p : points) append_coordinates(p, snapshot_points_);
+    if (cells != nullptr) {
+      snapshot_cells_.clear();
+      snapshot_cells_.reserve(Corners * cells->size());
+      for (const auto& c : *cells)
+        snapshot_cells_.insert(snapshot_cells_.end(), c.begin(), c.end());
       ++topology_seq_;
     }
     ++snapshot_seq_;
   }
   wake_subscribers();
+}
+
+void Job::publish_snapshot(int iteration, const std::vector<Vec2>& points,
+                           const std::vector<std::array<int32_t, 3>>* triangles) {
+  store_snapshot(iteration, points, triangles);
+}
+
+void Job::publish_snapshot(int iteration, const std::vector<Vec3>& points,
+                           const std::vector<std::array<int32_t, 4>>* tetrahedra) {
+  store_snapshot(iteration, points, tetrahedra);
 }
 
 void Job::succeed(EncodedResult result) {
@@ -144,7 +170,7 @@ void Job::succeed(EncodedResult result) {
     finished_at_ = Clock::now();
     // Snapshots are for watching a job settle; nobody needs them once the result is here.
     std::vector<double>().swap(snapshot_points_);
-    std::vector<int32_t>().swap(snapshot_triangles_);
+    std::vector<int32_t>().swap(snapshot_cells_);
   }
   wake_subscribers();
 }
@@ -160,7 +186,7 @@ void Job::finish(const grpc::Status& status) {
     final_status_ = status;
     finished_at_ = Clock::now();
     std::vector<double>().swap(snapshot_points_);
-    std::vector<int32_t>().swap(snapshot_triangles_);
+    std::vector<int32_t>().swap(snapshot_cells_);
   }
   cancel_.store(true, std::memory_order_relaxed);
   wake_subscribers();
@@ -259,10 +285,17 @@ NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Statu
       v1::Snapshot& s = *event.mutable_snapshot();
       s.set_iteration(snapshot_iteration_);
       s.mutable_points()->Add(snapshot_points_.begin(), snapshot_points_.end());
+      const bool volume = snapshot_dimension_ == 3;
+      if (volume) s.set_dimension(3);
       if (cursor.topology_seq != topology_seq_) {
         cursor.topology_seq = topology_seq_;
-        s.set_has_triangles(true);
-        s.mutable_triangles()->Add(snapshot_triangles_.begin(), snapshot_triangles_.end());
+        if (volume) {
+          s.set_has_tetrahedra(true);
+          s.mutable_tetrahedra()->Add(snapshot_cells_.begin(), snapshot_cells_.end());
+        } else {
+          s.set_has_triangles(true);
+          s.mutable_triangles()->Add(snapshot_cells_.begin(), snapshot_cells_.end());
+        }
       }
       return NextEvent::kEvent;
     }

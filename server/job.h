@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/common/vec2.h"
+#include "core/common/vec3.h"
 #include "meshd/v1/service.pb.h"
 #include "server/job_spec.h"
 #include "server/result_encoding.h"
@@ -96,6 +97,9 @@ class Job {
   // points: #N by 2; triangles: #M by 3, or null when unchanged since the last snapshot.
   void publish_snapshot(int iteration, const std::vector<Vec2>& points,
                         const std::vector<std::array<int32_t, 3>>* triangles);
+  // A volume's: points #N by 3; tetrahedra #M by 4, or null when unchanged.
+  void publish_snapshot(int iteration, const std::vector<Vec3>& points,
+                        const std::vector<std::array<int32_t, 4>>* tetrahedra);
   void succeed(EncodedResult result);
   // Finishes with a non-OK status: CANCELLED and DEADLINE_EXCEEDED count as cancelled, any
   // other code as failed. No effect on a job already final.
@@ -115,6 +119,11 @@ class Job {
   void wake_subscribers();
 
  private:
+  // publish_snapshot's body, for either dimension.
+  template <typename Point, size_t Corners>
+  void store_snapshot(int iteration, const std::vector<Point>& points,
+                      const std::vector<std::array<int32_t, Corners>>* cells);
+
   const std::string id_;
   const JobSpec spec_;
   const Backend backend_;
@@ -137,8 +146,9 @@ class Job {
   v1::Progress progress_;
   uint64_t progress_seq_ = 0;
   int snapshot_iteration_ = 0;
-  std::vector<double> snapshot_points_;  // x0, y0, x1, ...
-  std::vector<int32_t> snapshot_triangles_;
+  int snapshot_dimension_ = 2;
+  std::vector<double> snapshot_points_;  // x0, y0, x1, ... (x0, y0, z0, ... in 3D)
+  std::vector<int32_t> snapshot_cells_;  // triangles, or tetrahedra in 3D
   uint64_t snapshot_seq_ = 0;
   uint64_t topology_seq_ = 0;
   std::optional<EncodedResult> result_;

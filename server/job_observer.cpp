@@ -33,4 +33,9 @@ void JobObserver::on_snapshot(int iteration, const std::vector<Vec2>& points,
   job_.publish_snapshot(iteration, points, triangles);
 }
 
+void JobObserver::on_volume_snapshot(int iteration, const std::vector<Vec3>& points,
+                                     const std::vector<std::array<int32_t, 4>>* tetrahedra) {
+  job_.publish_snapshot(iteration, points, tetrahedra);
+}
+
 }  // namespace meshd

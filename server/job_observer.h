@@ -20,6 +20,8 @@ class JobObserver final : public Observer {
   bool wants_snapshot(int iteration) override;
   void on_snapshot(int iteration, const std::vector<Vec2>& points,
                    const std::vector<std::array<int32_t, 3>>* triangles) override;
+  void on_volume_snapshot(int iteration, const std::vector<Vec3>& points,
+                          const std::vector<std::array<int32_t, 4>>* tetrahedra) override;
 
  private:
   Job& job_;

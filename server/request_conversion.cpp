@@ -456,7 +456,7 @@ double check_node_count(const Problem& problem, const CompiledProblem& compiled,
 // ---------------------------------------------------------------------------------------------
 // Job options: how the service runs the request.
 
-JobOptions job_options(const v1::JobOptions& in, double estimated_nodes,
+JobOptions job_options(const v1::JobOptions& in, double estimated_nodes, bool volume,
                        const ConversionLimits& limits) {
   JobOptions out;
   switch (in.backend()) {
@@ -479,11 +479,12 @@ JobOptions job_options(const v1::JobOptions& in, double estimated_nodes,
   }
   out.priority = in.priority();
   out.snapshot_every = in_range(in.snapshot_every(), 0, 100'000, "options.snapshot_every");
-  const auto snapshot_limit = static_cast<uint32_t>(limits.max_snapshot_nodes);
+  const int node_limit = volume ? volume_snapshot_nodes(limits) : limits.max_snapshot_nodes;
   out.snapshot_max_nodes =
       in.snapshot_max_nodes() == 0
-          ? limits.max_snapshot_nodes
-          : in_range(in.snapshot_max_nodes(), 0, snapshot_limit, "options.snapshot_max_nodes");
+          ? node_limit
+          : in_range(in.snapshot_max_nodes(), 0, static_cast<uint32_t>(node_limit),
+                     "options.snapshot_max_nodes");
   if (out.snapshot_every > 0 && estimated_nodes > static_cast<double>(out.snapshot_max_nodes)) {
     throw Error(ErrorCode::kResourceExhausted, "options.snapshot_every",
                 "snapshots are limited to meshes of at most " +
@@ -560,11 +561,8 @@ JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limi
     spec.plane = compile_problem(problem);
     spec.estimated_nodes = check_node_count(problem, spec.plane, limits);
   }
-  spec.options = job_options(request.options(), spec.estimated_nodes, limits);
-  if (spec.volume && spec.options.snapshot_every > 0) {
-    throw_invalid("options.snapshot_every",
-                  "must be 0 for a volume: 3D jobs stream no snapshots yet");
-  }
+  spec.options =
+      job_options(request.options(), spec.estimated_nodes, spec.volume.has_value(), limits);
   return spec;
 }
 

@@ -32,12 +32,20 @@ struct ConversionLimits {
   int64_t max_size_grid_values = 16'777'216;  // samples of all grid terms together
   int max_fixed_points = 100'000;             // entries of fixed_points
   // Largest mesh whose snapshots may stream: one snapshot of 50k nodes is about 1.7 MB, well
-  // inside a client's default 4 MiB message limit.
+  // inside a client's default 4 MiB message limit. A volume's limit is volume_snapshot_nodes.
   int max_snapshot_nodes = 50'000;
   // Samples of all the distance grids in one tree (geometry or a size term), 4 bytes each;
   // RESOURCE_EXHAUSTED above it. The default is a 4096 x 4096 image.
   int64_t max_grid_samples = 16'777'216;
 };
+
+// The largest volume whose snapshots may stream: a node of a tetrahedral snapshot carries about
+// 2.5 times the bytes of a plane one (three coordinates and some 5.5 tetrahedra against two and
+// 2 triangles), so that the same message size allows 2/5 of max_snapshot_nodes (20,000 by
+// default).
+inline int volume_snapshot_nodes(const ConversionLimits& limits) {
+  return limits.max_snapshot_nodes / 5 * 2;
+}
 
 // Validates `request` against the proto's documented ranges and `limits`, and converts it.
 // Lengths keep the request's unit; angles become radians; unset optional parameters take core's

@@ -35,7 +35,8 @@ const char* server_usage() {
   --max-request-mb N        largest request message accepted, in MiB, [1, 2047] (default
                             256: a polygon of 5 million vertices takes about 100)
   --max-snapshot-nodes N    largest mesh whose snapshots may stream, [0, 100000] (default
-                            50000; a snapshot must fit a client's 4 MiB message limit)
+                            50000; a snapshot must fit a client's 4 MiB message limit); a
+                            volume's limit is 2/5 of it
   --max-grid-samples N      samples of the distance grids of one shape tree, [4, 1e9]
                             (default 16777216: a 4096 x 4096 image)
   --max-size-grid-values N  samples of a request's size-field grids together, [4, 1e9]

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/common/vec2.h"
+#include "core/common/vec3.h"
 
 namespace meshd {
 
@@ -30,6 +31,10 @@ class Observer {
   // last snapshot.
   virtual void on_snapshot(int /*iteration*/, const std::vector<Vec2>& /*points*/,
                            const std::vector<std::array<int32_t, 3>>* /*triangles*/) {}
+  // The same for a volume (the 3D loop calls it in on_snapshot's place): points #N by 3;
+  // tetrahedra #M by 4, or null when unchanged.
+  virtual void on_volume_snapshot(int /*iteration*/, const std::vector<Vec3>& /*points*/,
+                                  const std::vector<std::array<int32_t, 4>>* /*tetrahedra*/) {}
 };
 
 }  // namespace meshd

@@ -132,7 +132,8 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   };
   Topology3 topology;
   bool retriangulate = true;
-  int last_partial = -1;  // the iteration of the last partial retriangulation
+  bool topology_streamed = false;  // the last snapshot carried the current tetrahedra
+  int last_partial = -1;           // the iteration of the last partial retriangulation
   for (int iteration = 1; iteration <= params.max_iterations; ++iteration) {
     check_cancel();
     // 3. Retriangulate once a node drifted ttol of its length.
@@ -154,6 +155,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       measure_spacing3d(topology, nodes);
       engine->start(nodes, topology);
       ++stats.retriangulations;
+      topology_streamed = false;
     }
     // 4, 5, 7, 8. Forces, move, projection.
     const StepResult step = engine->step();
@@ -166,6 +168,12 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       progress.nodes = static_cast<int64_t>(nodes.points.size());
       progress.elapsed_s = seconds_since(start);
       observer->on_progress(progress);
+      if (observer->wants_snapshot(iteration)) {
+        engine->sync();
+        observer->on_volume_snapshot(iteration, nodes.points,
+                                     topology_streamed ? nullptr : &topology.tets);
+        topology_streamed = true;
+      }
     }
     rule.settling = rule.settle(rule.settling, step);
     if (rule.converged(step, iteration, rule.settling)) {

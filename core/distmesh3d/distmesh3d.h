@@ -41,8 +41,10 @@ struct Relaxed3 {
 
 // Meshes `domain` with tetrahedra of edge about h0 times its size field (h0 > 0, the request's
 // length unit). `pool` may be null (the caller's thread alone); the result is the same for any
-// number of threads. `observer` (may be null) hears of every step's progress (no snapshots in
-// 3D yet); throws Error(kCancelled) within one step once `cancel` (may be null) is set.
+// number of threads. `observer` (may be null) hears of every step's progress, and gets the
+// nodes and the kept tetrahedra after the iterations it asks a snapshot of
+// (on_volume_snapshot); throws Error(kCancelled) within one step once `cancel` (may be null) is
+// set.
 // `engine` runs the steps (engine3.h); null: the CPU engine on `pool`. Triangulations and the
 // finish run on the host, on `pool`.
 Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, ThreadPool* pool,

@@ -25,14 +25,15 @@ class Engine3 {
   // cannot evaluate (the GPU's needs domain.program).
   virtual void begin(const Domain3& domain, double h0, const Params3& params) = 0;
   // After a triangulation: `nodes` (their at_triangulation just set) and `topology` are the
-  // engine's, kept by reference, until sync.
+  // engine's, kept by reference, until the next start.
   virtual void start(Nodes3& nodes, const Topology3& topology) = 0;
   // Steps 4, 5, 7 and 8 (step3d.h) on the nodes.
   virtual StepResult step() = 0;
   // Step 6 on the last step's bars (crowded_nodes3d, step3d.h).
   virtual std::vector<int32_t> crowded_nodes() = 0;
   // Brings the nodes given to start up to date with every step since (nothing, when no step
-  // ran since the last sync or start).
+  // ran since the last sync or start); the engine steps on from there (a snapshot reads them
+  // between two steps).
   virtual void sync() = 0;
 };
 

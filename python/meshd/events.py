@@ -46,12 +46,14 @@ class Progress:
 @dataclass(frozen=True, eq=False)
 class Snapshot:
     """The nodes at one iteration. triangles is the latest triangulation the stream carried
-    (None before the first); topology_changed says whether this snapshot brought it."""
+    (None before the first); topology_changed says whether this snapshot brought it. A volume's
+    snapshot has points #N by 3 and tetrahedra in place of triangles (which is then None)."""
     job_id: str
     iteration: int
-    points: np.ndarray  # #N by 2
+    points: np.ndarray  # #N by 2 (#N by 3 for a volume)
     triangles: np.ndarray  # #M by 3, or None
     topology_changed: bool
+    tetrahedra: np.ndarray = None  # a volume's: #M by 4, or None
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,6 +71,7 @@ class EventDecoder:
         self._chunks = []
         self._received = 0
         self._triangles = None
+        self._tetrahedra = None
         self.done = None
 
     def feed(self, event):
@@ -87,6 +90,12 @@ class EventDecoder:
                             p.nodes, p.elapsed_s)
         if kind == "snapshot":
             s = event.snapshot
+            if s.dimension == 3:
+                if s.has_tetrahedra:
+                    self._tetrahedra = np.array(s.tetrahedra, dtype=np.int32).reshape(-1, 4)
+                points = np.array(s.points, dtype=np.float64).reshape(-1, 3)
+                return Snapshot(event.job_id, s.iteration, points, None, s.has_tetrahedra,
+                                self._tetrahedra)
             if s.has_triangles:
                 self._triangles = np.array(s.triangles, dtype=np.int32).reshape(-1, 3)
             points = np.array(s.points, dtype=np.float64).reshape(-1, 2)

@@ -407,6 +407,13 @@ def test_volume(c):
     c.expect(OK, "generate", "--sphere", "1", "--h0", "0.3", "-o", "s.svg")
     with open(c.path("s.svg")) as f:
         assert "<svg" in f.read(512), "s.svg is no SVG"
+    # A volume's frames: a picture of each snapshot's surface.
+    r = c.expect(OK, "generate", "--sphere", "1", "--h0", "0.3", "--frames", "vframes",
+                 "--snapshot-every", "5")
+    frames = sorted(os.listdir(c.path("vframes")))
+    assert frames and f"wrote {len(frames)} frames" in r.stdout, (frames, r.stdout)
+    with open(c.path(os.path.join("vframes", frames[0]))) as f:
+        assert "<path" in f.read(), f"{frames[0]} draws no face"
     c.expect(BAD_REQUEST, "generate", "--sphere", "1", "--circle", "1", "--h0", "0.3")
     print(f"  {nodes} nodes, {tets} tetrahedra; read back by meshio: {bool(meshio)}")
 

@@ -187,6 +187,34 @@ TEST(GpuEngine3, MeshesAsTheCpuEngineDoes) {
   EXPECT_NEAR(b.quality.volume, a.quality.volume, 0.005 * a.quality.volume);
 }
 
+// A snapshot brings the nodes to the host between two steps; the job goes on as without it.
+TEST(GpuEngine3, SnapshotsChangeNothing) {
+  SKIP_WITHOUT_GPU3();
+  struct EveryThird : Observer {
+    bool wants_snapshot(int iteration) override { return iteration % 3 == 0; }
+    void on_volume_snapshot(int, const std::vector<Vec3>& points,
+                            const std::vector<std::array<int32_t, 4>>*) override {
+      ++snapshots;
+      moved = moved || (!last.empty() && points != last);
+      last = points;
+    }
+    int snapshots = 0;
+    bool moved = false;  // the nodes a snapshot saw were those of the latest step
+    std::vector<Vec3> last;
+  } observer;
+  const GeometryDomain3 ball(node(Sphere{{0, 0, 0}, 1.0}), 0.15);
+  GpuEngine3 gpu(0);
+  const Params3 params;
+  const Relaxed3 plain = distmesh3d(ball.domain(), 0.15, params, nullptr, nullptr, nullptr, &gpu);
+  const Relaxed3 watched =
+      distmesh3d(ball.domain(), 0.15, params, nullptr, &observer, nullptr, &gpu);
+  EXPECT_GT(observer.snapshots, 2);
+  EXPECT_TRUE(observer.moved);
+  EXPECT_EQ(plain.iterations, watched.iterations);
+  EXPECT_TRUE(plain.points == watched.points);
+  EXPECT_TRUE(plain.tets == watched.tets);
+}
+
 TEST(GpuEngine3, RefusesADomainWithoutACompiledGeometry) {
   SKIP_WITHOUT_GPU3();
   Domain3 domain;

@@ -128,11 +128,15 @@ def test_volume(ctx):
     except meshd.InvalidArgument as e:
         assert "volume.geometry.sphere.radius" in str(e), e
         assert e.field == "volume.geometry.sphere.radius", e.field
-    try:
-        ctx.client.generate(meshd.request(part, h0=0.25, snapshot_every=5))
-        raise AssertionError("a volume accepted snapshot_every")
-    except meshd.InvalidArgument as e:
-        assert e.field == "options.snapshot_every", e
+    # A volume's snapshots: the nodes #N by 3 and the tetrahedra, the first one carrying them.
+    events = list(ctx.client.stream(meshd.request(part, h0=0.25, snapshot_every=5)))
+    snapshots = [e for e in events if isinstance(e, meshd.Snapshot)]
+    assert snapshots and snapshots[0].topology_changed, [type(e).__name__ for e in events]
+    for s in snapshots:
+        assert s.iteration % 5 == 0 and s.triangles is None, s.iteration
+        assert s.points.ndim == 2 and s.points.shape[1] == 3, s.points.shape
+        assert s.tetrahedra.shape[1] == 4 and s.tetrahedra.max() < len(s.points), s.iteration
+    assert isinstance(events[-1], meshd.Done) and len(events[-1].mesh.tetrahedra) > 0
 
 
 def test_polyhedron(ctx):

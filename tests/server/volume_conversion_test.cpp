@@ -128,8 +128,6 @@ TEST(VolumeConversion, BadFieldsAreNamedWithTheirRange) {
   expect_invalid(std::string(kBall) + "params { multilevel: true }", "params.multilevel",
                  "must stay unset");
   expect_invalid(std::string(kBall) + "params { geps: 0.5 }", "params.geps", "must be in (0, 0.1]");
-  expect_invalid(std::string(kBall) + "options { snapshot_every: 5 }", "options.snapshot_every",
-                 "must be 0 for a volume");
   expect_invalid(
       "volume { geometry { sphere { radius: 1 } } size { terms { distance { "
       "shape { sphere { radius: 1 } } h_min: 2 h_max: 1 } } } } h0: 0.2",
@@ -160,6 +158,28 @@ v1::MeshRequest cube_polyhedron_request() {
                      2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5})
     p->add_triangles(v);
   return r;
+}
+
+// A volume's snapshots: 2/5 of the plane limit, since each node carries about 2.5 times the
+// bytes (three coordinates, some 5.5 tetrahedra).
+TEST(VolumeConversion, SnapshotsOfVolumesHaveTheirOwnNodeLimit) {
+  ConversionLimits limits;
+  limits.max_snapshot_nodes = 1000;  // a volume's: 400; the ball at h0 0.2 has about 740 nodes
+  EXPECT_EQ(volume_snapshot_nodes(limits), 400);
+  EXPECT_EQ(to_job_spec(parse(std::string(kBall) + "options { snapshot_every: 5 }"))
+                .options.snapshot_max_nodes,
+            volume_snapshot_nodes(ConversionLimits{}));
+  testing::expect_error(parse(std::string(kBall) + "options { snapshot_every: 5 }"),
+                        ErrorCode::kResourceExhausted, "options.snapshot_every",
+                        "at most 400 nodes", limits);
+  testing::expect_error(parse(std::string(kBall) + "options { snapshot_max_nodes: 401 }"),
+                        ErrorCode::kInvalidArgument, "options.snapshot_max_nodes", "[0, 400]",
+                        limits);
+  const JobSpec coarse = to_job_spec(parse("volume { geometry { sphere { radius: 1 } } } h0: 0.4 "
+                                           "options { snapshot_every: 5 }"),
+                                     limits);
+  EXPECT_EQ(coarse.options.snapshot_every, 5);
+  EXPECT_EQ(coarse.options.snapshot_max_nodes, 400);
 }
 
 TEST(VolumeConversion, PolyhedraAreCheckedAndCounted) {

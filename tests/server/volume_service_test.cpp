@@ -76,6 +76,45 @@ TEST(VolumeService, GenerateStreamsAValidTetrahedralMesh) {
   EXPECT_NEAR(r.done.quality().max_surface_offset(), farthest, 1e-9);
 }
 
+// A volume's snapshots: the nodes by 3 and the kept tetrahedra, which the first snapshot and
+// every one after a retriangulation carry; each snapshot's points fit the tetrahedra held.
+TEST(VolumeService, SnapshotsCarryTheNodesAndTheirTetrahedra) {
+  TestServer server;
+  auto stub = server.stub();
+  v1::MeshRequest request = parse(kBoxMinusBall);
+  request.mutable_options()->set_snapshot_every(3);
+  const StreamResult r = generate(*stub, request);
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  ASSERT_TRUE(r.has_done);
+  int snapshots = 0, carrying = 0;
+  std::vector<int32_t> tets;
+  for (const v1::MeshEvent& e : r.events) {
+    if (!e.has_snapshot()) continue;
+    const v1::Snapshot& s = e.snapshot();
+    ++snapshots;
+    EXPECT_EQ(s.iteration() % 3, 0);
+    EXPECT_EQ(s.dimension(), 3u);
+    EXPECT_FALSE(s.has_triangles());
+    EXPECT_EQ(s.points_size() % 3, 0);
+    if (snapshots == 1) {
+      EXPECT_TRUE(s.has_tetrahedra()) << "the first snapshot has none";
+    }
+    if (s.has_tetrahedra()) {
+      ++carrying;
+      tets.assign(s.tetrahedra().begin(), s.tetrahedra().end());
+    }
+    ASSERT_FALSE(tets.empty());
+    EXPECT_EQ(tets.size() % 4, 0u);
+    const int nodes = s.points_size() / 3;
+    EXPECT_TRUE(
+        std::all_of(tets.begin(), tets.end(), [&](int32_t v) { return v >= 0 && v < nodes; }))
+        << "snapshot " << s.iteration();
+  }
+  EXPECT_GT(snapshots, 2);
+  EXPECT_GE(carrying, 1);
+  EXPECT_LT(carrying, snapshots) << "every snapshot carried the tetrahedra again";
+}
+
 // A request whose surface settling once left a node 0.53 h0 inside the ball's face: at this h0
 // the lattice-like corner of the cube minus a ball put it where two mirror-image tetrahedra
 // would lie flat with it on the surface, until their interior nodes step aside

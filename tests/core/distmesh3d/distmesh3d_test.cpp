@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/common/error.h"
 #include "core/distmesh3d/geometry_domain3d.h"
@@ -85,6 +88,52 @@ TEST(Distmesh3d, TheSameMeshOnAnyNumberOfThreads) {
   ASSERT_EQ(a.tets.size(), b.tets.size());
   for (size_t i = 0; i < a.points.size(); ++i) EXPECT_TRUE(a.points[i] == b.points[i]);
   EXPECT_TRUE(a.tets == b.tets);
+}
+
+// Asks a snapshot every `every` iterations and keeps what it got.
+class SnapshotRecorder : public Observer {
+ public:
+  explicit SnapshotRecorder(int every) : every_(every) {}
+  bool wants_snapshot(int iteration) override { return iteration % every_ == 0; }
+  void on_volume_snapshot(int iteration, const std::vector<Vec3>& points,
+                          const std::vector<std::array<int32_t, 4>>* tetrahedra) override {
+    iterations.push_back(iteration);
+    if (tetrahedra != nullptr) tets = *tetrahedra;
+    carried.push_back(tetrahedra != nullptr);
+    // The tetrahedra held number the nodes of every snapshot since they came.
+    int32_t highest = -1;
+    for (const auto& t : tets)
+      for (int32_t v : t) highest = std::max(highest, v);
+    consistent = consistent && !tets.empty() && highest < static_cast<int32_t>(points.size());
+  }
+  std::vector<int> iterations;
+  std::vector<bool> carried;
+  std::vector<std::array<int32_t, 4>> tets;
+  bool consistent = true;
+
+ private:
+  int every_;
+};
+
+TEST(Distmesh3d, SnapshotsFollowTheLoopAndChangeNothing) {
+  GeometryDomain3 box(
+      csg3(CsgOp::kDifference, {cuboid({-1, -1, -1}, {1, 1, 1}), sphere({0, 0, 0}, 0.5)}), 0.25);
+  const Relaxed3 plain = distmesh3d(box.domain(), 0.25, Params3{}, nullptr);
+  SnapshotRecorder recorder(4);
+  const Relaxed3 watched = distmesh3d(box.domain(), 0.25, Params3{}, nullptr, &recorder);
+  ASSERT_FALSE(recorder.iterations.empty());
+  for (int it : recorder.iterations) EXPECT_EQ(it % 4, 0);
+  EXPECT_EQ(recorder.iterations.back(), watched.iterations / 4 * 4);
+  EXPECT_TRUE(recorder.carried.front()) << "the first snapshot has no tetrahedra";
+  EXPECT_TRUE(recorder.consistent);
+  // Only snapshots after a retriangulation carry the tetrahedra again.
+  const auto carrying = std::count(recorder.carried.begin(), recorder.carried.end(), true);
+  EXPECT_LE(carrying, watched.retriangulations);
+  EXPECT_LT(carrying, static_cast<long>(recorder.carried.size()));
+  ASSERT_EQ(plain.points.size(), watched.points.size());
+  for (size_t i = 0; i < plain.points.size(); ++i)
+    EXPECT_TRUE(plain.points[i] == watched.points[i]);
+  EXPECT_TRUE(plain.tets == watched.tets);
 }
 
 TEST(Distmesh3d, ABadH0IsNamed) {
