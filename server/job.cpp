@@ -156,6 +156,11 @@ void Job::publish_snapshot(int iteration, const std::vector<Vec3>& points,
   store_snapshot(iteration, points, tetrahedra);
 }
 
+void Job::drop_problem() {
+  spec_.plane = CompiledProblem{};
+  if (spec_.volume) *spec_.volume = CompiledProblem3{};
+}
+
 void Job::succeed(EncodedResult result) {
   {
     std::lock_guard lock(mutex_);

@@ -65,6 +65,9 @@ class Job {
 
   const std::string& id() const { return id_; }
   const JobSpec& spec() const { return spec_; }
+  // Frees the compiled problem once no worker will mesh it (the job finished, ran or not): a
+  // retained job keeps what GetJob and its result need, not its geometry.
+  void drop_problem();
   Backend backend() const { return backend_; }
   Clock::time_point deadline() const { return deadline_; }
   Clock::time_point submitted() const { return submitted_; }
@@ -125,7 +128,7 @@ class Job {
                       const std::vector<std::array<int32_t, Corners>>* cells);
 
   const std::string id_;
-  const JobSpec spec_;
+  JobSpec spec_;  // const but for drop_problem
   const Backend backend_;
   const Clock::time_point deadline_;
   const Clock::time_point submitted_;

@@ -160,6 +160,7 @@ std::vector<v1::JobInfo> JobManager::list(v1::JobState filter) const {
 }
 
 void JobManager::on_finished(Job& job) {
+  job.drop_problem();
   metrics_.count_job(outcome(job.state()));
   --live_;
   metrics_.add_live_jobs(-1);

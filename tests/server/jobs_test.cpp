@@ -253,6 +253,8 @@ TEST(JobManager, ConcurrentSubmitsAndCancelsAllEnd) {
   int succeeded = 0, cancelled = 0;
   for (const auto& job : jobs) {
     ASSERT_TRUE(job->is_final()) << job->id();
+    // Run or cancelled in the queue, a finished job no longer holds its compiled geometry.
+    EXPECT_TRUE(job->spec().plane.geometry.code.empty()) << job->id();
     succeeded += job->state() == JobState::kSucceeded;
     cancelled += job->state() == JobState::kCancelled;
   }
@@ -262,6 +264,23 @@ TEST(JobManager, ConcurrentSubmitsAndCancelsAllEnd) {
   const std::string text = metrics.text();
   EXPECT_NE(text.find("meshd_jobs_total{outcome=\"succeeded\"} " + std::to_string(succeeded)),
             std::string::npos);
+  manager.drain(0ms);
+}
+
+TEST(JobManager, AFinishedVolumeKeepsNoGeometry) {
+  Metrics metrics;
+  JobManager manager(JobManagerOptions{}, cpu_workers(1), metrics);
+  manager.start();
+  v1::MeshRequest request;
+  request.mutable_volume()->mutable_geometry()->mutable_sphere()->set_radius(1.0);
+  request.set_h0(0.4);
+  const std::shared_ptr<Job> job = manager.submit(request, Job::Clock::time_point::max());
+  const auto until = Job::Clock::now() + 30s;
+  while (manager.live_jobs() > 0 && Job::Clock::now() < until) std::this_thread::sleep_for(5ms);
+  EXPECT_EQ(job->state(), JobState::kSucceeded);
+  ASSERT_TRUE(job->spec().volume.has_value());
+  EXPECT_EQ(job->spec().volume->geometry, nullptr);
+  EXPECT_GT(job->spec().estimated_nodes, 0.0);  // what GetJob shows stays
   manager.drain(0ms);
 }
 
