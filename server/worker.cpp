@@ -6,9 +6,7 @@
 #include <utility>
 
 #include "core/common/error.h"
-#include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/distmesh.h"
-#include "core/distmesh/node_estimate.h"
 #include "core/distmesh3d/generate_mesh3d.h"
 #include "server/job_observer.h"
 #include "server/request_conversion.h"
@@ -27,11 +25,11 @@ v1::JobOptions::Backend to_proto(Backend b) {
 }
 
 // A unit disk at about 400 nodes: every step of the loop once, in well under a second.
-Problem warm_up_problem() {
+JobSpec warm_up_job() {
   v1::MeshRequest request;
   request.mutable_geometry()->mutable_circle()->set_radius(1.0);
   request.set_h0(0.1);
-  return to_problem(request);
+  return to_job_spec(request);
 }
 
 }  // namespace
@@ -51,10 +49,10 @@ void Worker::warm_up() {
   const auto t = Job::Clock::now();
   engine_ = factory_();
   device_ = engine_->device();
-  const CompiledProblem problem = compile_problem(warm_up_problem());
+  const JobSpec job = warm_up_job();
   const auto t_mesh = Job::Clock::now();
-  const MeshResult r = generate_mesh(problem, engine_->engine(), nullptr, nullptr);
-  queue_.observe_run(kind_, estimate_node_count(problem), seconds_since(t_mesh));
+  const MeshResult r = generate_mesh(job.plane, engine_->engine(), nullptr, nullptr);
+  queue_.observe_run(kind_, job.estimated_nodes, seconds_since(t_mesh));
   spdlog::info("worker {} warm on {}: {} nodes in {:.3f} s", name_, device_, r.mesh.points.size(),
                seconds_since(t));
 }

@@ -25,7 +25,8 @@ double dither_threshold3(uint64_t seed, int64_t i, int64_t j, int64_t k) {
 // A lattice is as degenerate as a point set gets (the eight corners of every cube on one sphere),
 // which sends every in-sphere test of the first triangulation to exact arithmetic: moving each
 // point by a millionth of the lattice's side, in a direction hashed from its indices, makes the
-// first triangulation as fast as the later ones and changes nothing the loop can see.
+// first triangulation as fast as the later ones. The forces cannot tell, but the first
+// triangulation splits the cubes otherwise, so the relaxation's path (its iteration count) moves.
 constexpr double kLatticeJitter = 1e-6;
 
 }  // namespace
