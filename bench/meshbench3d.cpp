@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
   meshd::ThreadPool pool(opt.threads);
   const std::unique_ptr<meshd::Engine3> engine = make_engine(opt);
   std::printf(
-      "| domain | steps, threads | h0 | nodes | tetrahedra | iterations | retri (partial) | "
+      "| domain | steps, threads | h0 | nodes | tetrahedra | iterations | retri (partial, "
+      "repaired) | "
       "removed / fixed "
       "unused "
       "| t_relax s (initial / triangulations [CGAL] / steps) "
@@ -150,7 +151,8 @@ int main(int argc, char** argv) {
           meshd::surface_offset3d(geometry.domain(), best.points, best.tets, 1e-3 * h0);
       const bool converged = best.converged;
       std::printf(
-          "| %s | %s, %u | %.5f | %zu | %zu | %d | %d (%d) | %lld / %lld | %.3f (%.3f / %.3f "
+          "| %s | %s, %u | %.5f | %zu | %zu | %d | %d (%d, %d, %d) | %lld / %lld | %.3f (%.3f / "
+          "%.3f "
           "[%.3f] / "
           "%.3f) | "
           "%.3f | %.3f | %.3f | "
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
           "| %lld | %.1f | %.1f | %.1e, %lld of %lld | %lld / %lld / %lld |\n",
           name.c_str(), opt.backend.c_str(), pool.size(), h0, best.points.size(), best.tets.size(),
           best.iterations, best.retriangulations, best.partial_retriangulations,
+          best.repaired_retriangulations, best.repairs_refused,
           static_cast<long long>(best.removed), static_cast<long long>(best.unused_fixed),
           best_relax, best.t_initial, best.t_triangulate, best.t_delaunay, best.t_steps,
           best_slivers, best_relax + best_slivers, q.q_min, q.q_mean,

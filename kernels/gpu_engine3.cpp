@@ -7,6 +7,7 @@
 #include "core/common/error.h"
 #include "kernels/device_buffer.h"
 #include "kernels/device_program3.h"
+#include "kernels/flip_repair3.h"
 #include "kernels/launch3d.h"
 #include "kernels/pinned_value.h"
 
@@ -36,6 +37,8 @@ struct GpuEngine3::Impl {
   DeviceBuffer<StepResult> result;
   DeviceBuffer<uint8_t> crowded;
   gpu::PinnedValue<StepResult> h_result;
+  // The last triangulation, for the next repair.
+  gpu::KeptTetrahedra3 kept;
 
   void use_device() const { MESHD_CUDA_CHECK(cudaSetDevice(device)); }
 };
@@ -71,6 +74,7 @@ void GpuEngine3::begin(const Domain3& domain, double h0, const Params3& params) 
   s.h0 = h0;
   s.nodes = nullptr;
   s.stepped = false;
+  s.kept.forget();
   s.geometry.upload(*domain.program, s.stream);
   s.size.upload(domain.size ? domain.size_field : nullptr, s.stream);
 }
@@ -160,6 +164,23 @@ void GpuEngine3::sync() {
   s.momentum.download(s.nodes->momentum.data(), s.stream);
   MESHD_CUDA_CHECK(cudaStreamSynchronize(s.stream));
   s.stepped = false;
+}
+
+void GpuEngine3::keep_triangulation(const std::vector<std::array<int32_t, 4>>& all, int64_t nodes) {
+  Impl& s = *impl_;
+  s.use_device();
+  s.kept.keep(all, nodes, s.stream);
+}
+
+void GpuEngine3::forget_triangulation() { impl_->kept.forget(); }
+
+std::optional<std::vector<std::array<int32_t, 4>>> GpuEngine3::repair_triangulation() {
+  Impl& s = *impl_;
+  // The nodes the triangulation was kept for live in p from the next start on.
+  if (!s.kept.kept() || s.nodes == nullptr) return std::nullopt;
+  s.use_device();
+  if (!s.kept.repair(s.p.span(), kRepairRounds3, s.stream).usable()) return std::nullopt;
+  return s.kept.download(s.stream);
 }
 
 }  // namespace meshd

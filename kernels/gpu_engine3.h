@@ -4,7 +4,9 @@
 // is four launches and one read of its three measures. The geometry and the size field are the
 // request's compiled programs (Domain3::program, ::size_field), copied to the device once per job
 // and evaluated by the same code as on the host (sdf3_eval.cuh, size_field3_eval.cuh).
-// Triangulations and the finish run on the host (distmesh3d.h). Device buffers grow and are
+// The engine keeps the last triangulation the host built and repairs it by flips on the device
+// for the moved nodes (flip_repair3.h); the host builds where a repair gives up, and builds the
+// final triangulation; the finish runs on the host (distmesh3d.h). Device buffers grow and are
 // kept between jobs. One engine per device; not thread-safe.
 //
 // A plain C++ header: g++ code includes it without CUDA.
@@ -30,6 +32,9 @@ class GpuEngine3 final : public Engine3 {
   StepResult step() override;
   std::vector<int32_t> crowded_nodes() override;
   void sync() override;
+  void keep_triangulation(const std::vector<std::array<int32_t, 4>>& all, int64_t nodes) override;
+  void forget_triangulation() override;
+  std::optional<std::vector<std::array<int32_t, 4>>> repair_triangulation() override;
 
  private:
   struct Impl;

@@ -55,7 +55,8 @@ v1::RunStats to_proto(const RunStats3& s) {
   out.set_converged(s.converged);
   out.set_levels(1);
   out.set_retriangulations(s.retriangulations);
-  out.set_full_triangulations(s.retriangulations - s.partial_retriangulations);
+  out.set_full_triangulations(s.retriangulations - s.partial_retriangulations -
+                              s.repaired_retriangulations);
   out.set_density_removed(s.removed);
   out.set_t_triangulation(s.t_triangulation);
   out.set_t_forces(s.t_steps);

@@ -162,6 +162,11 @@ bool Tetrahedralization3::remove(const std::vector<int32_t>& gone) {
   return true;
 }
 
+void Tetrahedralization3::forget() {
+  impl_->dt.clear();
+  impl_->vertex.clear();
+}
+
 std::vector<std::array<int32_t, 4>> delaunay_tetrahedralize(const std::vector<Vec3>& points,
                                                             unsigned threads) {
   return Tetrahedralization3().build(points, threads);

@@ -43,6 +43,9 @@ class Tetrahedralization3 {
   // keeps their order does (remove_nodes3d), so that later moves and builds continue from there.
   // False (and the triangulation is gone) when the last build had coinciding points.
   bool remove(const std::vector<int32_t>& gone);
+  // Drops the triangulation, whose points were moved elsewhere (a repair on the device): later
+  // moves and removals answer nothing until the next build.
+  void forget();
 
  private:
   struct Impl;

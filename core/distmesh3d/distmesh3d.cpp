@@ -1,10 +1,12 @@
 #include "core/distmesh3d/distmesh3d.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
 #include "core/common/error.h"
 #include "core/delaunay/delaunay3d.h"
+#include "core/delaunay/flip_repair3.h"
 #include "core/distmesh3d/cpu_engine3.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
@@ -29,6 +31,9 @@ constexpr size_t kPartialMost = 1000;
 // takes the ones the validity check calls degenerate (6 V <= 1e-12 longest edge^3) and no more
 // than those under about 1e-10.
 constexpr double kFlatQuality = 1e-20;
+// The share of a repair's tetrahedra that may lie inside turned over (and go, see `serves`):
+// at 10k nodes the repairs left 0 to 6 such of 55k, and the refused ones hundreds.
+constexpr double kTurnedInsideShare = 1e-3;
 
 // The tetrahedra's points, the used fixed ones first, the others in first use order,
 // renumbered; points no kept tetrahedron uses go: free ones outside or cut off by the centroid
@@ -97,11 +102,26 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   rule.patience = params.patience;
 
   // Step 3, after taking out the free nodes that coincide with another (Topology3::coincident):
-  // the nodes `moved` moved in the kept triangulation (which lost the nodes removed since), or
-  // (none given, or a move that failed) all of them triangulated anew. Tells whether the kept
-  // triangulation served.
+  // the engine's kept triangulation repaired for the moved nodes (`repair`), or the nodes
+  // `moved` moved in the host's kept triangulation (which lost the nodes removed since), or (none
+  // given, or a repair or move that failed) all of them triangulated anew. Tells whether it was
+  // repaired on the engine, moved on the host, or built.
   Tetrahedralization3 delaunay;
-  const auto triangulate = [&](Nodes3& n, Relaxed3& counts,
+  enum class Made { kRepaired, kMoved, kBuilt };
+  // A repair leaves turned over the tetrahedra its flips could not mend: mostly flat ones of
+  // four boundary nodes, outside, which the hull's fixed faces hold (flip_repair3.h). They go;
+  // the repair serves unless more than a few of them lay inside, where the tetrahedra around
+  // them overlap. The engine keeps them, and a later repair that they make fail builds anew.
+  const auto serves = [&](const std::vector<Vec3>& points,
+                          std::vector<std::array<int32_t, 4>>& all) {
+    const std::vector<std::array<int32_t, 4>> turned = take_turned3(points, all);
+    const auto inside = std::count_if(turned.begin(), turned.end(), [&](const auto& t) {
+      const Vec3 c = 0.25 * (points[t[0]] + points[t[1]] + points[t[2]] + points[t[3]]);
+      return domain.distance(c) < -geps;
+    });
+    return static_cast<double>(inside) <= kTurnedInsideShare * static_cast<double>(all.size());
+  };
+  const auto triangulate = [&](Nodes3& n, Relaxed3& counts, bool repair,
                                const std::optional<std::vector<int32_t>>& moved, Topology3& t) {
     const auto begin = Clock::now();
     std::optional<std::vector<std::array<int32_t, 4>>> all;
@@ -110,25 +130,44 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       all = make();
       counts.t_delaunay += seconds_since(t0);
     };
-    if (moved) tetrahedralize([&] { return delaunay.move(n.points, *moved); });
-    const bool partial = all.has_value();
-    if (partial)
-      for (int32_t i : *moved) n.at_triangulation[i] = n.points[i];
+    Made made = Made::kBuilt;
+    if (repair) tetrahedralize([&] { return engine->repair_triangulation(); });
+    if (all) {
+      made = Made::kRepaired;
+      delaunay.forget();  // its points are where the last build or move left them
+      n.at_triangulation = n.points;
+    } else if (moved) {
+      tetrahedralize([&] { return delaunay.move(n.points, *moved); });
+      if (all) {
+        made = Made::kMoved;
+        for (int32_t i : *moved) n.at_triangulation[i] = n.points[i];
+      }
+    }
+    bool renumbered = false;  // the engine's repaired triangulation is no longer the nodes'
     for (;;) {
       if (!all) {
         tetrahedralize([&] { return delaunay.build(n.points, pool_threads(pool)); });
         n.at_triangulation = n.points;
       }
+      if (made == Made::kRepaired && !renumbered && !serves(n.points, *all)) {
+        all.reset();
+        made = Made::kBuilt;
+        ++counts.repairs_refused;
+        continue;
+      }
       t = topology_of3d(domain, n.points, *all, n.fixed, geps, kCoincidentRelative * h0, pool);
       if (t.coincident.empty()) break;
       remove_nodes3d(n, t.coincident);
+      renumbered = true;
       counts.removed += static_cast<int64_t>(t.coincident.size());
       all.reset();
       if (delaunay.remove(t.coincident))
         tetrahedralize([&] { return delaunay.move(n.points, {}); });
     }
+    if (repair && (made != Made::kRepaired || renumbered))
+      engine->keep_triangulation(*all, static_cast<int64_t>(n.points.size()));
     counts.t_triangulate += seconds_since(begin);
-    return partial;
+    return made;
   };
   Topology3 topology;
   bool retriangulate = true;
@@ -148,9 +187,16 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
             static_cast<double>(moved->size()) > kPartialShare * nodes.points.size())
           moved.reset();
       }
-      if (triangulate(nodes, stats, moved, topology)) {
-        last_partial = iteration;
-        ++stats.partial_retriangulations;
+      switch (triangulate(nodes, stats, true, moved, topology)) {
+        case Made::kRepaired:
+          ++stats.repaired_retriangulations;
+          break;
+        case Made::kMoved:
+          last_partial = iteration;
+          ++stats.partial_retriangulations;
+          break;
+        case Made::kBuilt:
+          break;
       }
       measure_spacing3d(topology, nodes);
       engine->start(nodes, topology);
@@ -187,6 +233,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       if (!crowded.empty()) {
         engine->sync();
         remove_nodes3d(nodes, crowded);
+        engine->forget_triangulation();
         delaunay.remove(crowded);  // a triangulation lost here is built anew at step 3
         stats.removed += static_cast<int64_t>(crowded.size());
         retriangulate = true;
@@ -196,7 +243,7 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
 
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
   engine->sync();
-  triangulate(nodes, stats, std::nullopt, topology);
+  triangulate(nodes, stats, false, std::nullopt, topology);
   // A tetrahedron of four coplanar nodes that the centroid filter kept has no volume and, when
   // its nodes are fixed (samples on a plane through the interior, as a polyhedron whose surface
   // crosses itself makes), nothing can mend it: it goes.
@@ -214,6 +261,8 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   out.iterations = stats.iterations;
   out.retriangulations = stats.retriangulations + 1;
   out.partial_retriangulations = stats.partial_retriangulations;
+  out.repaired_retriangulations = stats.repaired_retriangulations;
+  out.repairs_refused = stats.repairs_refused;
   out.removed = stats.removed;
   out.converged = stats.converged;
   out.t_relax = std::chrono::duration<double>(relaxed - start).count();

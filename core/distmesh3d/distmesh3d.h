@@ -26,7 +26,9 @@ struct Relaxed3 {
   std::vector<std::array<int32_t, 4>> tets;  // #M by 4, positively oriented
   int iterations = 0;
   int retriangulations = 0;
-  int partial_retriangulations = 0;  // of those, the ones that moved a few nodes (distmesh3d.cpp)
+  int partial_retriangulations = 0;   // of those, the ones that moved a few nodes (distmesh3d.cpp)
+  int repaired_retriangulations = 0;  // and the ones the engine repaired (Engine3::repair_...)
+  int repairs_refused = 0;            // repairs that left a kept tetrahedron turned (then built)
   int64_t removed = 0;          // nodes density control took out, and free nodes on another node
   SurfaceSettling surface;      // the surface nodes moved onto the boundary (settle_surface3d.h)
   int64_t optimizer_moves = 0;  // node moves of the sliver optimisation

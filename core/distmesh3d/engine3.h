@@ -1,10 +1,14 @@
 // The interface between the 3D DistMesh loop (written once, in distmesh3d.cpp) and the machines
 // that run its steps: the CPU engine (cpu_engine3.h) and the GPU engine in kernels/. The loop
-// keeps the nodes and builds each triangulation on the host; between two triangulations the
-// engine owns the nodes, steps them and measures them, and gives them back when asked.
+// keeps the nodes and builds triangulations on the host; between two triangulations the engine
+// owns the nodes, steps them and measures them, and gives them back when asked. An engine may
+// also keep the last triangulation and repair it for the moved nodes (the GPU's flips), which
+// spares the host a build.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/distmesh/step_rule.cuh"
@@ -35,6 +39,25 @@ class Engine3 {
   // ran since the last sync or start); the engine steps on from there (a snapshot reads them
   // between two steps).
   virtual void sync() = 0;
+
+  // The Delaunay tetrahedra of all the `nodes` nodes (delaunay3d.h's, outside ones included),
+  // just built on the host for the nodes about to be given to start: what a later repair starts
+  // from. Nothing by default.
+  virtual void keep_triangulation(const std::vector<std::array<int32_t, 4>>& all, int64_t nodes) {
+    (void)all;
+    (void)nodes;
+  }
+  // Nodes were removed, and the kept triangulation numbers them no more.
+  virtual void forget_triangulation() {}
+  // The kept triangulation repaired by flips for the nodes as the last step left them (after
+  // sync), and kept for the next repair: conforming tetrahedra of all the nodes, locally Delaunay
+  // wherever a flip could make them so, and positive but where flips could not mend them
+  // (flip_repair3.h; the loop refuses a repair that leaves one of the tetrahedra it keeps
+  // turned). Nothing where the engine has none or the flips do not end (the loop then builds on
+  // the host). Nothing by default.
+  virtual std::optional<std::vector<std::array<int32_t, 4>>> repair_triangulation() {
+    return std::nullopt;
+  }
 };
 
 }  // namespace meshd

@@ -24,6 +24,7 @@ MeshResult3 generate_mesh3d(const CompiledProblem3& problem, ThreadPool* pool, O
   out.stats.converged = relaxed.converged;
   out.stats.retriangulations = relaxed.retriangulations;
   out.stats.partial_retriangulations = relaxed.partial_retriangulations;
+  out.stats.repaired_retriangulations = relaxed.repaired_retriangulations;
   out.stats.removed = relaxed.removed;
   out.stats.fixed = relaxed.fixed;
   out.stats.unused_fixed = relaxed.unused_fixed;

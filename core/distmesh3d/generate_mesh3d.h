@@ -21,7 +21,8 @@ struct RunStats3 {
   int iterations = 0;
   bool converged = false;
   int retriangulations = 0;
-  int partial_retriangulations = 0;  // of those, moves of a few nodes in the kept triangulation
+  int partial_retriangulations = 0;   // of those, moves of a few nodes in the kept triangulation
+  int repaired_retriangulations = 0;  // and repairs by the engine (the GPU's flips)
   int64_t removed = 0;  // nodes density control took out, and free nodes on another node
   int64_t fixed = 0;    // fixed nodes kept (sharp corners and edge samples)
   int64_t unused_fixed = 0;

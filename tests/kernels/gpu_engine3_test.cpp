@@ -162,7 +162,8 @@ TEST(GpuEngine3, FindsTheCrowdedNodesTheCpuFinds) {
 }
 
 // Whole jobs: the two engines' meshes are both valid and of the same size and quality (their
-// last bits differ, and the loop's decisions follow them, so the meshes are not identical).
+// last bits differ, the GPU repairs triangulations that the host builds, and the loop's decisions
+// follow them, so the meshes are not identical).
 TEST(GpuEngine3, MeshesAsTheCpuEngineDoes) {
   SKIP_WITHOUT_GPU3();
   Problem3 problem;
@@ -181,9 +182,14 @@ TEST(GpuEngine3, MeshesAsTheCpuEngineDoes) {
     EXPECT_GE(r->quality.q_min, 0.2);
     EXPECT_LT(r->quality.max_surface_offset, 1e-3 * problem.h0);
   }
+  // The GPU repaired triangulations by flips; the CPU engine builds them on the host.
+  EXPECT_GT(b.stats.repaired_retriangulations, 0);
+  EXPECT_EQ(a.stats.repaired_retriangulations, 0);
   const double na = static_cast<double>(a.mesh.points.size());
   EXPECT_NEAR(static_cast<double>(b.mesh.points.size()), na, 0.02 * na);
-  EXPECT_NEAR(b.quality.q_mean, a.quality.q_mean, 0.01);
+  // Not worse (the repaired triangulations lead elsewhere: on the host's flips this job ends
+  // at q_mean 0.843 against the builds' 0.831).
+  EXPECT_GE(b.quality.q_mean, a.quality.q_mean - 0.01);
   EXPECT_NEAR(b.quality.volume, a.quality.volume, 0.005 * a.quality.volume);
 }
 

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "core/common/error.h"
+#include "core/delaunay/flip_repair3.h"
+#include "core/distmesh3d/cpu_engine3.h"
 #include "core/distmesh3d/geometry_domain3d.h"
 #include "core/distmesh3d/surface_offset3d.h"
 #include "core/mesh3d/tet_quality.h"
@@ -134,6 +136,56 @@ TEST(Distmesh3d, SnapshotsFollowTheLoopAndChangeNothing) {
   for (size_t i = 0; i < plain.points.size(); ++i)
     EXPECT_TRUE(plain.points[i] == watched.points[i]);
   EXPECT_TRUE(plain.tets == watched.tets);
+}
+
+// The CPU engine's steps with the host's repair by flips, as the GPU engine repairs on the
+// device: what the loop's repaired retriangulations run on without a GPU.
+class RepairingEngine final : public Engine3 {
+ public:
+  const char* name() const override { return "cpu+flips"; }
+  void begin(const Domain3& domain, double h0, const Params3& params) override {
+    cpu_.begin(domain, h0, params);
+    kept_ = false;
+  }
+  void start(Nodes3& nodes, const Topology3& topology) override {
+    nodes_ = &nodes;
+    cpu_.start(nodes, topology);
+  }
+  StepResult step() override { return cpu_.step(); }
+  std::vector<int32_t> crowded_nodes() override { return cpu_.crowded_nodes(); }
+  void sync() override {}
+  void keep_triangulation(const std::vector<std::array<int32_t, 4>>& all, int64_t nodes) override {
+    kept_ = flips_.keep(all, nodes);
+    ++kept;
+  }
+  void forget_triangulation() override { kept_ = false; }
+  std::optional<std::vector<std::array<int32_t, 4>>> repair_triangulation() override {
+    if (!kept_ || !flips_.repair(nodes_->points).usable()) return std::nullopt;
+    return flips_.tets();
+  }
+  int kept = 0;
+
+ private:
+  CpuEngine3 cpu_{nullptr};
+  FlipRepair3 flips_;
+  Nodes3* nodes_ = nullptr;
+  bool kept_ = false;
+};
+
+TEST(Distmesh3d, RepairedRetriangulationsServeTheLoop) {
+  GeometryDomain3 box(
+      csg3(CsgOp::kDifference, {cuboid({-1, -1, -1}, {1, 1, 1}), sphere({0, 0, 0}, 0.5)}), 0.25);
+  RepairingEngine engine;
+  const Relaxed3 r = distmesh3d(box.domain(), 0.25, Params3{}, nullptr, nullptr, nullptr, &engine);
+  EXPECT_GT(r.repaired_retriangulations, 0);
+  EXPECT_LE(r.repaired_retriangulations + r.partial_retriangulations, r.retriangulations - 2);
+  // The first build was kept for the repairs to start from.
+  EXPECT_GE(engine.kept, 1);
+  expect_valid(box.domain(), r, 0.25);
+  const TetQualityStats q = summarize_tet_quality(r.points, r.tets);
+  EXPECT_GE(q.q_min, 0.2);
+  EXPECT_GE(q.q_mean, 0.85);
+  EXPECT_GE(q.min_dihedral_deg, 10.0);
 }
 
 TEST(Distmesh3d, ABadH0IsNamed) {
