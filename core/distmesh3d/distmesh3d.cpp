@@ -31,8 +31,9 @@ constexpr size_t kPartialMost = 1000;
 // takes the ones the validity check calls degenerate (6 V <= 1e-12 longest edge^3) and no more
 // than those under about 1e-10.
 constexpr double kFlatQuality = 1e-20;
-// The share of a repair's tetrahedra that may lie inside turned over (and go, see `serves`):
-// at 10k nodes the repairs left 0 to 6 such of 55k, and the refused ones hundreds.
+// The share of a repair's tetrahedra that may lie inside turned over (and go, see `serves`): the
+// repairs of a 1,800-node ball (9k tetrahedra) left 0 or 6 such, or 66 to 377 where boundary
+// nodes had slid far, which this refuses.
 constexpr double kTurnedInsideShare = 1e-3;
 
 // The tetrahedra's points, the used fixed ones first, the others in first use order,

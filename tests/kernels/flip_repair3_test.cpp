@@ -22,15 +22,6 @@ namespace {
 
 using Tets = std::vector<std::array<int32_t, 4>>;
 
-std::vector<Vec3> moved(std::vector<Vec3> p, double amount, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amount, amount);
-  for (Vec3& q : p)
-    if (std::fabs(q.x) < 0.9 && std::fabs(q.y) < 0.9 && std::fabs(q.z) < 0.9)
-      q = q + Vec3{u(rng), u(rng), u(rng)};
-  return p;
-}
-
 void expect_same_repair(const std::vector<Vec3>& before, const std::vector<Vec3>& after) {
   const Tets start = delaunay_tetrahedralize(before, 4);
   const auto n = static_cast<int64_t>(before.size());
@@ -57,8 +48,8 @@ TEST(GpuFlipRepair3, RepairsRandomPointsAsTheHostDoes) {
   const size_t n = 50000;
   const std::vector<Vec3> before = testing::random_points3(n, 5);
   const double spacing = 2.0 / std::cbrt(static_cast<double>(n));
-  expect_same_repair(before, moved(before, 0.001 * spacing, 6));
-  expect_same_repair(before, moved(before, 0.2 * spacing, 7));
+  expect_same_repair(before, testing::moved_inner3(before, 0.001 * spacing, 6));
+  expect_same_repair(before, testing::moved_inner3(before, 0.2 * spacing, 7));
 }
 
 TEST(GpuFlipRepair3, RepairsALatticeAsTheHostDoes) {
@@ -68,7 +59,7 @@ TEST(GpuFlipRepair3, RepairsALatticeAsTheHostDoes) {
     for (int j = 0; j <= 24; ++j)
       for (int k = 0; k <= 24; ++k)
         before.push_back({i / 12.0 - 1.0, j / 12.0 - 1.0, k / 12.0 - 1.0});
-  expect_same_repair(before, moved(before, 0.001, 3));
+  expect_same_repair(before, testing::moved_inner3(before, 0.001, 3));
 }
 
 }  // namespace

@@ -96,17 +96,6 @@ double total_volume(const std::vector<Vec3>& p, const Tets& tets) {
   return v;
 }
 
-// Points inside the cube's inner part move by up to `amount` in each coordinate; the others
-// (the hull among them) stay.
-std::vector<Vec3> moved(std::vector<Vec3> p, double amount, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amount, amount);
-  for (Vec3& q : p)
-    if (std::fabs(q.x) < 0.9 && std::fabs(q.y) < 0.9 && std::fabs(q.z) < 0.9)
-      q = q + Vec3{u(rng), u(rng), u(rng)};
-  return p;
-}
-
 double spacing_of(size_t n) { return 2.0 / std::cbrt(static_cast<double>(n)); }
 
 // A thousandth of the spacing: hundreds of faces to flip, and (random points have slivers
@@ -114,7 +103,7 @@ double spacing_of(size_t n) { return 2.0 / std::cbrt(static_cast<double>(n)); }
 TEST(FlipRepair3, GivesCgalsTetrahedraOfSlightlyMovedRandomPoints) {
   for (const size_t n : {2000u, 20000u}) {
     const std::vector<Vec3> before = testing::random_points3(n, 5);
-    const std::vector<Vec3> after = moved(before, 0.001 * spacing_of(n), 6);
+    const std::vector<Vec3> after = testing::moved_inner3(before, 0.001 * spacing_of(n), 6);
     const Repaired r = repair(before, after);
     ASSERT_TRUE(r.outcome.clean())
         << "n " << n << ": ended " << r.outcome.ended << ", overfull " << r.outcome.overfull
@@ -130,7 +119,7 @@ TEST(FlipRepair3, GivesCgalsTetrahedraOfSlightlyMovedRandomPoints) {
 TEST(FlipRepair3, ReportsWhatFlipsCannotMend) {
   const size_t n = 20000;
   const std::vector<Vec3> before = testing::random_points3(n, 5);
-  const std::vector<Vec3> after = moved(before, 0.2 * spacing_of(n), 6);
+  const std::vector<Vec3> after = testing::moved_inner3(before, 0.2 * spacing_of(n), 6);
   const Repaired r = repair(before, after);
   ASSERT_TRUE(r.outcome.ended);
   EXPECT_GT(r.outcome.flips, static_cast<int64_t>(n / 10));
