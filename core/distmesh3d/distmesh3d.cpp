@@ -134,9 +134,14 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
     Made made = Made::kBuilt;
     if (repair) tetrahedralize([&] { return engine->repair_triangulation(); });
     if (all) {
-      made = Made::kRepaired;
       delaunay.forget();  // its points are where the last build or move left them
       n.at_triangulation = n.points;
+      if (serves(n.points, *all)) {
+        made = Made::kRepaired;
+      } else {
+        all.reset();
+        ++counts.repairs_refused;
+      }
     } else if (moved) {
       tetrahedralize([&] { return delaunay.move(n.points, *moved); });
       if (all) {
@@ -149,12 +154,6 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       if (!all) {
         tetrahedralize([&] { return delaunay.build(n.points, pool_threads(pool)); });
         n.at_triangulation = n.points;
-      }
-      if (made == Made::kRepaired && !renumbered && !serves(n.points, *all)) {
-        all.reset();
-        made = Made::kBuilt;
-        ++counts.repairs_refused;
-        continue;
       }
       t = topology_of3d(domain, n.points, *all, n.fixed, geps, kCoincidentRelative * h0, pool);
       if (t.coincident.empty()) break;
