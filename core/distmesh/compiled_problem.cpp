@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/common/error.h"
+#include "core/distmesh/corner_clusters.h"
 #include "core/geometry/boundary_crossings.h"
 #include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
@@ -213,7 +214,10 @@ CompiledProblem compile_problem(const Problem& problem) {
     fixed.add(p);
   }
   if (problem.auto_corners) {
-    for (Vec2 c : boundary_corners(out.geometry, out.bbox)) fixed.add(c);
+    const std::vector<Vec2> given = out.fixed_points;
+    for (Vec2 c : thin_corner_clusters(boundary_corners(out.geometry, out.bbox), given,
+                                       out.geometry, out.size, out.h0))
+      fixed.add(c);
   }
   return out;
 }

@@ -23,6 +23,8 @@ struct CompiledProblem {
 };
 
 // Compiles `problem`; feature-size terms and a gradation are sampled as sampled_size_field's.
+// With auto_corners, the boundary's corners join the fixed points, thinned where they crowd
+// (corner_clusters.h).
 // Throws Error(kInvalidArgument) naming the field when the geometry is unbounded without a bbox,
 // the bbox or domain is empty, or a fixed point lies outside.
 CompiledProblem compile_problem(const Problem& problem);

@@ -18,7 +18,7 @@ struct Problem {
   double h0 = 0.0;                 // absolute edge length where h(p) = 1; > 0
   std::optional<Box> bbox;         // derived from the geometry when absent
   std::vector<Vec2> fixed_points;  // kept as nodes, exactly
-  bool auto_corners = true;        // boundary corners become fixed (compiled_problem.h)
+  bool auto_corners = true;        // boundary corners become fixed (corner_clusters.h)
   Params params;
   uint64_t seed = 0;  // for the size-based rejection of initial points
 };

@@ -103,5 +103,30 @@ TEST(CornerMeshes, EveryCrossingIsANodeAndTheBoundaryIsKept) {
   }
 }
 
+// A square whose top side has two tiny V-notches, each three corners within 2e of each other,
+// as a simplified coastline has: fixed all, they would make edges of e beside edges of h0.
+TEST(CornerMeshes, CornersCloserThanAShareOfTheEdgeMakeNoSlivers) {
+  const double h0 = 0.05, e = 0.1 * h0;
+  std::vector<Vec2> outline = {{0, 0}, {1, 0}, {1, 1}};
+  for (double x : {0.7, 0.3})
+    for (Vec2 v : {Vec2{x + e, 1}, Vec2{x, 1 - e}, Vec2{x - e, 1}}) outline.push_back(v);
+  outline.push_back({0, 1});
+  Problem p;
+  p.geometry = Shape{Polygon{outline}, "", ""};
+  p.h0 = h0;
+  const CompiledProblem c = compile_problem(p);
+  // The square's corners and each notch's bottom, its sharpest corner.
+  ASSERT_EQ(c.fixed_points.size(), 6u);
+  ThreadPool pool(2);
+  CpuEngine engine(pool);
+  const MeshResult r = generate_mesh(c, engine, nullptr, nullptr);
+  std::printf("[ measured ] notched square: nodes %zu, q_min %.3f, q_mean %.4f\n",
+              r.mesh.points.size(), r.quality.q_min, r.quality.q_mean);
+  EXPECT_TRUE(check_validity(r.mesh).valid());
+  // With all ten corners fixed: q_min 0.67, q_mean 0.960.
+  EXPECT_GE(r.quality.q_min, 0.75);
+  EXPECT_GE(r.quality.q_mean, 0.975);
+}
+
 }  // namespace
 }  // namespace meshd
