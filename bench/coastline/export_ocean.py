@@ -23,7 +23,8 @@ Prints the polygon and vertex counts, which meshctl's own summary line must matc
 
 --open F goes one step beyond meshctl: water narrower than F * h0 is closed before the
 simplification (opened_land), because a mesh cannot resolve it and its acute corners would set
-the worst elements. With it the request is no longer what meshctl --import sends, but meshd and
+the worst elements; the simplification's own acute corners are rounded by a second, smaller
+opening after it. With it the request is no longer what meshctl --import sends, but meshd and
 Gmsh still get the same polygons.
 """
 import argparse
@@ -91,16 +92,19 @@ def opened_land(features, clip, radius, tolerance):
     2 radius (channels, inlets, the slivers where a coast meets the clip box at a grazing angle)
     becomes land, and every acute corner of the sea is rounded to that radius. Arcs get 30
     segments a quarter circle, 3 degrees a vertex: under the 5 degrees at which meshd pins a
-    polygon vertex. Then simplified as a whole, so that neighbouring pieces keep their topology."""
+    polygon vertex. Then simplified as a whole, so that neighbouring pieces keep their topology,
+    and opened again by half the radius: the simplification cuts across the arcs and makes acute
+    corners of its own (down to 2 degrees where a coast meets the clip box at a grazing angle),
+    which the second opening rounds; its arcs stay as they are."""
     union = ogr.Geometry(ogr.wkbMultiPolygon)
     for g in features:
         for poly in polygons_of(g):
             union.AddGeometry(poly)
     box = box_polygon(clip)
-    sea = box.Difference(union.UnionCascaded()).Buffer(-radius, 30).Buffer(radius, 30)
-    land = box.Difference(sea)
+    opened = lambda land, r: box.Difference(box.Difference(land).Buffer(-r, 30).Buffer(r, 30))
+    land = opened(union.UnionCascaded(), radius)
     if tolerance > 0:
-        land = land.SimplifyPreserveTopology(tolerance)
+        land = opened(land.SimplifyPreserveTopology(tolerance), radius / 2)
     return rings_of(land, tolerance)
 
 

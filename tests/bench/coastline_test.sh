@@ -3,8 +3,7 @@
 # of the Norwegian coast west of Bergen (786 shoreline vertices, 63 islands), the sea round it
 # graded toward the shore, meshed by meshd through meshctl. Asserts properties only: the mesh is
 # valid and every island of at least (2 h0)^2 is a hole in it (check_mesh.py exits 1 otherwise).
-# q_min and q_mean are printed, not asserted: a raw coastline pins polygon vertices closer
-# together than h0 and meshd then makes slivers there (bench/RESULTS.md, coastline section).
+# q_min and q_mean are printed, not asserted (bench/RESULTS.md follows them, coastline section).
 # Skips (77) where gmt, its gmt-gshhg-high data or python3-gdal is missing.
 #
 #   coastline_test.sh MESHD MESHCTL SOURCE_DIR WORK_DIR
