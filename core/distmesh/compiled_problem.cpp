@@ -30,18 +30,19 @@ class DistinctPoints {
     for (size_t i = 0; i < points_.size(); ++i) cells_[cell_of(points_[i])].push_back(i);
   }
 
-  // Appends p unless a point within `tol` is already there.
-  void add(Vec2 p) {
+  // Appends p unless a point within `tol` is already there; returns whether it did.
+  bool add(Vec2 p) {
     const Cell c = cell_of(p);
     for (int64_t dx = -1; dx <= 1; ++dx)
       for (int64_t dy = -1; dy <= 1; ++dy) {
         const auto it = cells_.find({c.x + dx, c.y + dy});
         if (it == cells_.end()) continue;
         for (size_t i : it->second)
-          if (norm(p - points_[i]) <= tol_) return;
+          if (norm(p - points_[i]) <= tol_) return false;
       }
     cells_[c].push_back(points_.size());
     points_.push_back(p);
+    return true;
   }
 
  private:
@@ -69,13 +70,16 @@ class DistinctPoints {
 
 }  // namespace
 
-std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
+std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox,
+                                   std::vector<double>* turns) {
   // Corners of the final boundary evaluate to 0 up to rounding in the primitives' parameters.
   const double tol = 1e-10 * box_diameter(bbox);
   std::vector<Vec2> corners;
   DistinctPoints distinct(corners, tol);
-  auto add_if_on_boundary = [&](Vec2 v) {
-    if (std::fabs(eval_sdf(geometry.view(), v)) <= tol) distinct.add(v);
+  if (turns != nullptr) turns->clear();
+  auto add_if_on_boundary = [&](Vec2 v, double turn) {
+    if (std::fabs(eval_sdf(geometry.view(), v)) <= tol && distinct.add(v) && turns != nullptr)
+      turns->push_back(turn);
   };
   // A vertex where the outline turns by less than a crossing must (a finely sampled curve)
   // is no corner: pinning every sample would force the mesh down to the sampling's spacing.
@@ -85,9 +89,10 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
     auto vertex = [&](size_t i) { return Vec2{prim.corners[2 * i], prim.corners[2 * i + 1]}; };
     for (size_t i = 0; i < n; ++i) {
       const Vec2 in = vertex(i) - vertex((i + n - 1) % n), out = vertex((i + 1) % n) - vertex(i);
-      const bool turns =
+      const bool turning =
           std::fabs(cross(in, out)) >= min_sin * norm(in) * norm(out) || dot(in, out) < 0.0;
-      if (turns) add_if_on_boundary(vertex(i));
+      if (turning)
+        add_if_on_boundary(vertex(i), std::atan2(std::fabs(cross(in, out)), dot(in, out)));
     }
   }
   // Where two primitives' boundaries cross on the final boundary, it turns: a corner too. Two
@@ -96,7 +101,7 @@ std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox) {
   // a real coastline has tens of thousands, as many as its outline has vertices.
   const size_t vertex_corners = corners.size();
   for (Vec2 v : boundary_crossings(geometry, bbox)) {
-    add_if_on_boundary(v);
+    add_if_on_boundary(v, NAN);
     if (corners.size() - vertex_corners > kMaxCrossingCorners) {
       throw_invalid("geometry", "its primitives' boundaries cross at more than " +
                                     std::to_string(kMaxCrossingCorners) +
@@ -215,8 +220,9 @@ CompiledProblem compile_problem(const Problem& problem) {
   }
   if (problem.auto_corners) {
     const std::vector<Vec2> given = out.fixed_points;
-    for (Vec2 c : thin_corner_clusters(boundary_corners(out.geometry, out.bbox), given,
-                                       out.geometry, out.size, out.h0))
+    std::vector<double> turns;
+    const std::vector<Vec2> corners = boundary_corners(out.geometry, out.bbox, &turns);
+    for (Vec2 c : thin_corner_clusters(corners, turns, given, out.geometry, out.size, out.h0))
       fixed.add(c);
   }
   return out;

@@ -40,9 +40,12 @@ SizeFieldSpec sampled_size_field(const Problem& problem);
 
 // The corners of `geometry`'s final boundary (|d| tiny there): polygon and rectangle vertices
 // where the outline turns by kMinCrossingDegrees or more, and the crossings of two primitives'
-// boundaries (boundary_crossings.h).
+// boundaries (boundary_crossings.h). turns: null, or filled with each corner's turn (radians in
+// [0, pi], |pi - the angle between the outline's two sides there) where a polygon's or a
+// rectangle's outline gives it, NaN at crossings.
 // Throws Error(kInvalidArgument) on field "geometry" past kMaxCrossingCorners crossings.
-std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox);
+std::vector<Vec2> boundary_corners(const Program& geometry, const Box& bbox,
+                                   std::vector<double>* turns = nullptr);
 constexpr size_t kMaxCrossingCorners = 20000;
 
 }  // namespace meshd

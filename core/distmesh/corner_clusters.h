@@ -23,9 +23,11 @@ constexpr double kCornerClusterShare = 0.25;
 
 // `corners` without those within kCornerClusterShare * h0 * h of a sharper corner or of one of
 // `kept` (fixed points the caller keeps whatever they are); the survivors in their given order.
-// A corner's sharpness is |pi - the domain's angle there|, the angle measured on a small circle
-// around it; it is only measured where two corners are that close.
+// A corner's sharpness is |pi - the domain's angle there|: turns[i] (boundary_corners' turns),
+// or where that is NaN the angle measured on a small circle around the corner, only where two
+// corners are that close.
 std::vector<Vec2> thin_corner_clusters(const std::vector<Vec2>& corners,
+                                       const std::vector<double>& turns,
                                        const std::vector<Vec2>& kept, const Program& geometry,
                                        const SizeProgram& size, double h0);
 

@@ -4,8 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
+#include "core/distmesh/compiled_problem.h"
+#include "core/geometry/bounds.h"
 #include "core/geometry/compile.h"
 #include "tests/core/geometry/shape_builders.h"
 
@@ -15,6 +20,9 @@ namespace {
 using testing::rectangle;
 
 SizeProgram uniform() { return compile_size_field({}); }
+
+// Turns not known: measured around each crowded corner, as at crossings.
+std::vector<double> unknown(size_t n) { return std::vector<double>(n, NAN); }
 
 // The unit square with a narrow notch cut into its corner (1, 1): the notch's sides meet at
 // (1 - 4e, 1 - 4e) at 16 degrees (a reflex corner of 344 degrees for the domain, 164 from
@@ -28,7 +36,7 @@ Shape square_with_a_notch(double e) {
 TEST(CornerClusters, CornersFarApartAllStay) {
   const Program square = compile_geometry(rectangle({0, 0}, {1, 1}));
   const std::vector<Vec2> corners = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  EXPECT_EQ(thin_corner_clusters(corners, {}, square, uniform(), 0.1), corners);
+  EXPECT_EQ(thin_corner_clusters(corners, unknown(4), {}, square, uniform(), 0.1), corners);
 }
 
 TEST(CornerClusters, OfACloseClusterTheSharpestStays) {
@@ -36,18 +44,26 @@ TEST(CornerClusters, OfACloseClusterTheSharpestStays) {
   const Program notched = compile_geometry(square_with_a_notch(e));
   const std::vector<Vec2> corners = {{0, 0},     {1, 0}, {1, 1 - e}, {1 - 4 * e, 1 - 4 * e},
                                      {1 - e, 1}, {0, 1}};
-  const std::vector<Vec2> thinned = thin_corner_clusters(corners, {}, notched, uniform(), 0.5);
-  EXPECT_EQ(thinned, (std::vector<Vec2>{{0, 0}, {1, 0}, {1 - 4 * e, 1 - 4 * e}, {0, 1}}));
+  const std::vector<Vec2> sharpest = {{0, 0}, {1, 0}, {1 - 4 * e, 1 - 4 * e}, {0, 1}};
+  EXPECT_EQ(thin_corner_clusters(corners, unknown(6), {}, notched, uniform(), 0.5), sharpest);
+  // The same with the turns the compiler gives.
+  std::vector<double> turns;
+  const std::vector<Vec2> found = boundary_corners(notched, program_bounds(notched), &turns);
+  ASSERT_EQ(found.size(), 6u);
+  EXPECT_NEAR(turns[0], std::numbers::pi / 2, 1e-12);  // the square's corner (0, 0)
+  EXPECT_EQ(thin_corner_clusters(found, turns, {}, notched, uniform(), 0.5).size(), 4u);
+  EXPECT_TRUE(std::find(found.begin(), found.end(), Vec2{1 - 4 * e, 1 - 4 * e}) != found.end());
   // At edges under 1.4 e / kCornerClusterShare (the notch's mouth) every corner is apart enough.
-  EXPECT_EQ(thin_corner_clusters(corners, {}, notched, uniform(), e / kCornerClusterShare),
-            corners);
+  EXPECT_EQ(
+      thin_corner_clusters(corners, unknown(6), {}, notched, uniform(), e / kCornerClusterShare),
+      corners);
 }
 
 TEST(CornerClusters, TheCallersFixedPointsWinOverCorners) {
   const Program square = compile_geometry(rectangle({0, 0}, {1, 1}));
   const std::vector<Vec2> corners = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   const std::vector<Vec2> thinned =
-      thin_corner_clusters(corners, {{0.99, 0.995}}, square, uniform(), 0.1);
+      thin_corner_clusters(corners, unknown(4), {{0.99, 0.995}}, square, uniform(), 0.1);
   EXPECT_EQ(thinned, (std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}}));
 }
 
@@ -61,8 +77,8 @@ TEST(CornerClusters, TheReachFollowsTheSizeField) {
   const std::vector<Vec2> near_fine = {{0, 0.3}, {0, 0.35}};
   const std::vector<Vec2> near_coarse = {{1, 0.3}, {1, 0.35}};
   const SizeProgram field = compile_size_field(graded);
-  EXPECT_EQ(thin_corner_clusters(near_fine, {}, box, field, 0.1).size(), 2u);
-  EXPECT_EQ(thin_corner_clusters(near_coarse, {}, box, field, 0.1).size(), 1u);
+  EXPECT_EQ(thin_corner_clusters(near_fine, unknown(2), {}, box, field, 0.1).size(), 2u);
+  EXPECT_EQ(thin_corner_clusters(near_coarse, unknown(2), {}, box, field, 0.1).size(), 1u);
 }
 
 }  // namespace
