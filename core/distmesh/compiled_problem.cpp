@@ -219,11 +219,12 @@ CompiledProblem compile_problem(const Problem& problem) {
     fixed.add(p);
   }
   if (problem.auto_corners) {
-    const std::vector<Vec2> given = out.fixed_points;
     std::vector<double> turns;
     const std::vector<Vec2> corners = boundary_corners(out.geometry, out.bbox, &turns);
-    for (Vec2 c : thin_corner_clusters(corners, turns, given, out.geometry, out.size, out.h0))
-      fixed.add(c);
+    // The thinning reads the request's fixed points before any corner joins them.
+    const std::vector<Vec2> thinned =
+        thin_corner_clusters(corners, turns, out.fixed_points, out.geometry, out.size, out.h0);
+    for (Vec2 c : thinned) fixed.add(c);
   }
   return out;
 }
