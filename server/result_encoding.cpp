@@ -104,6 +104,7 @@ v1::RunStats to_proto(const RunStats& s) {
   out.set_fold_refills(s.fold_refills);
   out.set_density_removed(s.density_removed);
   out.set_cleanup_removed(s.cleanup_removed);
+  out.set_trapped_removed(s.trapped_removed);
   out.set_t_triangulation(s.t_triangulation);
   out.set_t_forces(s.t_forces);
   out.set_t_cleanup(s.t_cleanup);

@@ -10,6 +10,7 @@
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
+#include "core/distmesh/trapped_nodes.h"
 
 namespace meshd {
 namespace {
@@ -119,6 +120,8 @@ class Loop {
     engine_.read_mesh(copy);
     if (problem_.params.cleanup) {
       const auto t = Clock::now();
+      s.trapped_removed =
+          remove_trapped_nodes(copy, static_cast<int32_t>(problem_.fixed_points.size()));
       s.optimized_moves =
           optimize_worst_elements(problem_, copy.points, copy.triangles, copy.boundary,
                                   copy.below ? &*copy.below : nullptr, engine_.host_pool());
@@ -126,7 +129,8 @@ class Loop {
     }
     result.mesh = assemble_mesh(problem_, std::move(copy.points), std::move(copy.triangles),
                                 copy.boundary, copy.tidy);
-    result.quality = engine_.measure_quality(result.mesh, s.optimized_moves > 0);
+    result.quality =
+        engine_.measure_quality(result.mesh, s.optimized_moves > 0 || s.trapped_removed > 0);
     s.t_finish = seconds_since(t_finish);
     s.t_total = seconds_since(t0);
     result.stats = s;

@@ -23,6 +23,7 @@ struct RunStats {
   int fold_refills = 0;         // repairs that met turned-over triangles and mended them locally
   int64_t density_removed = 0;  // points removed by density control
   int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
+  int64_t trapped_removed = 0;  // interior nodes of three triangles the finish removed
   int cleanup_iterations = 0;
   int64_t optimized_moves = 0;  // node moves of the worst-element optimisation
   // Seconds per phase; total is the wall time of generate_mesh. t_full_triangulation is the part
