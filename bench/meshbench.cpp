@@ -149,8 +149,8 @@ int main(int argc, char** argv) {
   std::printf(
       "| request | backend | nodes | triangles | levels | iterations | equiv. iter "
       "| retri (repair/full) | fallbacks / refills | flips | t_tri s | t_forces s | us/iter "
-      "| GB/s (model) | t_cleanup s | t_total s | q_min | q_mean | min angle |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| GB/s (model) | t_cleanup s | t_total s | q_min | q_mean | min angle | trapped |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   std::vector<std::string> phase_rows;
   for (const std::string& path : opt.requests) {
@@ -178,13 +178,13 @@ int main(int argc, char** argv) {
                             : 0.0;
       std::printf(
           "| %s | %s | %zu | %zu | %d | %d | %.0f | %d (%d/%d) | %d / %d | %lld | %.3f | %.3f "
-          "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f |%s\n",
+          "| %.1f | %.0f | %.3f | %.3f | %.3f | %.4f | %.1f | %lld |%s\n",
           name.c_str(), engine->name(), best.mesh.points.size(), best.mesh.triangles.size(),
           s.levels, steps, s.equivalent_iterations, s.retriangulations,
           s.retriangulations - s.full_triangulations, s.full_triangulations, s.repair_fallbacks,
           s.fold_refills, static_cast<long long>(s.flips), s.t_triangulation, s.t_forces,
           us_per_step, gbps, s.t_cleanup, s.t_total, best.quality.q_min, best.quality.q_mean,
-          best.quality.min_angle_deg,
+          best.quality.min_angle_deg, static_cast<long long>(s.trapped_removed),
           validity.problems.empty() ? "" : (" INVALID: " + validity.problems[0]).c_str());
       if (!validity.problems.empty() || !s.converged) ++failures;
       char row[512];
