@@ -87,7 +87,7 @@ def box_polygon(clip):
                                      .format(*clip))
 
 
-def opened_land(features, clip, radius, tolerance):
+def opened_land(features, clip, radius, tolerance, min_pocket=0.0):
     """The land once the sea is opened by `radius` (eroded, then dilated): water narrower than
     2 radius (channels, inlets, the slivers where a coast meets the clip box at a grazing angle)
     becomes land, and every acute corner of the sea is rounded to that radius. Arcs get 30
@@ -95,7 +95,11 @@ def opened_land(features, clip, radius, tolerance):
     polygon vertex. Then simplified as a whole, so that neighbouring pieces keep their topology,
     and opened again by half the radius: the simplification cuts across the arcs and makes acute
     corners of its own (down to 2 degrees where a coast meets the clip box at a grazing angle),
-    which the second opening rounds; its arcs stay as they are."""
+    which the second opening rounds; its arcs stay as they are. Last, with min_pocket > 0, the
+    pockets of sea under min_pocket m2 (lakes, and water the openings cut off from the rest)
+    become land, as islands under the resolution may be lost: a pocket a few edges across meshes
+    into a handful of poor triangles, and the triangles of one next to the sea straddle the land
+    between them."""
     union = ogr.Geometry(ogr.wkbMultiPolygon)
     for g in features:
         for poly in polygons_of(g):
@@ -105,10 +109,22 @@ def opened_land(features, clip, radius, tolerance):
     land = opened(union.UnionCascaded(), radius)
     if tolerance > 0:
         land = opened(land.SimplifyPreserveTopology(tolerance), radius / 2)
+    if min_pocket > 0:
+        land = filled_pockets(land, box, min_pocket)
     return rings_of(land, tolerance)
 
 
-def import_land(path, to_crs, clip, tolerance, open_radius=0):
+def filled_pockets(land, box, min_area):
+    """land with every part of the sea (box minus land) of area under min_area added to it."""
+    sea = box.Difference(land)  # kept alive: polygons_of returns references into it
+    pockets = ogr.Geometry(ogr.wkbMultiPolygon)
+    for p in polygons_of(sea):
+        if p.GetArea() < min_area:
+            pockets.AddGeometry(p)
+    return land.Union(pockets) if pockets.GetGeometryCount() else land
+
+
+def import_land(path, to_crs, clip, tolerance, open_radius=0, min_pocket=0):
     """Steps 3-6 of gis_import.h for every feature: list of (outer, [holes]) vertex lists; with
     open_radius > 0, opened_land of the clipped features instead of step 5 per feature."""
     ds = ogr.Open(path)
@@ -126,7 +142,7 @@ def import_land(path, to_crs, clip, tolerance, open_radius=0):
         g.Transform(transform)
         clipped.append(g.Intersection(box))
     if open_radius > 0:
-        return opened_land(clipped, clip, open_radius, tolerance)
+        return opened_land(clipped, clip, open_radius, tolerance, min_pocket)
     land = []
     for g in clipped:
         if tolerance > 0 and not g.IsEmpty():
@@ -245,11 +261,14 @@ def main():
     ap.add_argument("--gradation", type=float, default=0, help="the request's size gradation")
     ap.add_argument("--open", type=float, default=0,
                     help="close water narrower than F * h0 first (see opened_land)")
+    ap.add_argument("--min-pocket", type=float, default=0,
+                    help="with --open, sea pockets under M2 square metres become land")
     ap.add_argument("out")
     a = ap.parse_args()
     clip = [float(v) for v in a.clip.split(",")]
     grade = [float(v) for v in a.grade.split(",")]
-    land = import_land(a.region, a.to_crs, clip, a.simplify * a.h0, a.open * a.h0 / 2)
+    land = import_land(a.region, a.to_crs, clip, a.simplify * a.h0, a.open * a.h0 / 2,
+                       a.min_pocket)
     if not land:
         sys.exit("export_ocean: no land inside the clip box")
     feature = [float(v) for v in a.feature.split(",")] if a.feature else None

@@ -24,8 +24,8 @@
 # Environment (defaults in brackets): WORK [bench/coastline/data], REGION [19.3/23.2/59.5/60.8:
 # the Archipelago Sea and Åland], H0 [200] metres, SIMPLIFY [1] and OPEN [1] times H0 (see
 # export_ocean.py), GRADE [1,0.00025,8], FEATURE [3,0.25,8] (K,H_MIN,H_MAX; "" for none),
-# GRADATION [0.2; 0 for none], MIN_ISLAND [(2 H0)^2] m2, MESHD [build/bin/meshd],
-# MESHCTL [build/bin/meshctl], GMSH [gmsh], PYTHON [/usr/bin/python3].
+# GRADATION [0.2; 0 for none], MIN_ISLAND [(2 H0)^2] m2 (also the smallest pocket of sea kept),
+# MESHD [build/bin/meshd], MESHCTL [build/bin/meshctl], GMSH [gmsh], PYTHON [/usr/bin/python3].
 set -euo pipefail
 shopt -s inherit_errexit
 
@@ -66,7 +66,7 @@ if [[ ! -f $prefix.textproto || ! -f $prefix.islands ]]; then
   # shellcheck disable=SC1090
   . "$prefix.env"
   "$PYTHON" "$here/export_ocean.py" "$prefix.geojson" --to-crs "$TO_CRS" --clip "$CLIP" \
-    --h0 "$H0" --simplify "$SIMPLIFY" --open "$OPEN" --grade "$GRADE" \
+    --h0 "$H0" --simplify "$SIMPLIFY" --open "$OPEN" --min-pocket "$MIN_ISLAND" --grade "$GRADE" \
     ${FEATURE:+--feature "$FEATURE"} --gradation "$GRADATION" "$prefix" >&2
 fi
 

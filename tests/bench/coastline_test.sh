@@ -21,7 +21,8 @@ rm -rf "$work" && mkdir -p "$work"
 # shellcheck disable=SC1091
 . "$work/region.env"
 "$python" "$src/bench/coastline/export_ocean.py" "$work/region.geojson" --to-crs "$TO_CRS" \
-  --clip "$CLIP" --h0 250 --simplify 1 --open 1 --grade 1,0.0005,6 "$work/region"
+  --clip "$CLIP" --h0 250 --simplify 1 --open 1 --min-pocket 250000 --grade 1,0.0005,6 \
+  "$work/region"
 # shellcheck source=bench/coastline/local_meshd.sh
 . "$src/bench/coastline/local_meshd.sh"
 meshd_pid=
