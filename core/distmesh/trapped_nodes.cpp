@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -26,8 +27,7 @@ class TrappedNodes {
         t_(mesh.triangles),
         nfix_(nfix),
         boundary_ends_(half_edge_ends(mesh.triangles, mesh.boundary)),
-        on_boundary_(mesh.points.size(), 0),
-        merged_into_(mesh.triangles.size(), -1) {
+        on_boundary_(mesh.points.size(), 0) {
     for (const auto& e : boundary_ends_) on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
   }
 
@@ -46,27 +46,27 @@ class TrappedNodes {
   using Star = std::array<int32_t, 3>;
 
   int64_t remove_pass() {
+    // Valences in bytes, saturating (a fixed corner may have hundreds of triangles): the count
+    // over every triangle is the pass's whole cost when, as in most meshes, no node is trapped.
     const size_t n = m_.points.size();
-    std::vector<int32_t> valence(n, 0);
-    for (size_t s = 0; s < t_.size(); ++s)
-      if (merged_into_[s] < 0)
-        for (int32_t v : t_[s]) ++valence[v];
-    std::vector<int32_t> slot(n, -1);
+    std::vector<uint8_t> valence(n, 0);
+    for (size_t s = 0; s < t_.size(); ++s) {
+      if (!merged_into_.empty() && merged_into_[s] >= 0) continue;
+      for (int32_t v : t_[s]) valence[v] += valence[v] < UINT8_MAX;
+    }
     std::vector<int32_t> centres;
-    std::vector<Star> stars;
-    std::vector<int> filled;
+    for (size_t v = nfix_; v < n; ++v)
+      if (valence[v] == 3 && !on_boundary_[v]) centres.push_back(static_cast<int32_t>(v));
+    if (centres.empty()) return 0;
+    std::vector<int32_t> slot(n, -1);
+    for (size_t k = 0; k < centres.size(); ++k) slot[centres[k]] = static_cast<int32_t>(k);
+    if (merged_into_.empty()) merged_into_.assign(t_.size(), -1);
+    std::vector<Star> stars(centres.size());
+    std::vector<int> filled(centres.size(), 0);
     for (size_t s = 0; s < t_.size(); ++s) {
       if (merged_into_[s] >= 0) continue;
-      for (int32_t v : t_[s]) {
-        if (v < nfix_ || on_boundary_[v] || valence[v] != 3) continue;
-        if (slot[v] < 0) {
-          slot[v] = static_cast<int32_t>(stars.size());
-          centres.push_back(v);
-          stars.push_back({});
-          filled.push_back(0);
-        }
-        stars[slot[v]][filled[slot[v]]++] = static_cast<int32_t>(s);
-      }
+      for (int32_t v : t_[s])
+        if (slot[v] >= 0) stars[slot[v]][filled[slot[v]]++] = static_cast<int32_t>(s);
     }
     // A node is removed unless a neighbour was, this pass: then their stars shared triangles.
     std::vector<char> taken(n, 0);
@@ -159,8 +159,9 @@ class TrappedNodes {
   int32_t nfix_;
   std::vector<std::array<int32_t, 2>> boundary_ends_;
   std::vector<char> on_boundary_;
-  std::vector<int32_t> merged_into_;  // -1 while the triangle lives
-  std::vector<int32_t> survivors_;    // the triangles a merge rewrote
+  // -1 while the triangle lives; empty until a pass finds a trapped node.
+  std::vector<int32_t> merged_into_;
+  std::vector<int32_t> survivors_;  // the triangles a merge rewrote
 };
 
 }  // namespace
