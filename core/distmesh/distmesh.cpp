@@ -115,7 +115,8 @@ class Loop {
     const auto t_finish = Clock::now();
     triangulate(false);
     if (dropped_since_full_ > 0) triangulate(true);
-    // The boundary depends on the triangles alone, which the optimisation keeps: found once.
+    // The boundary depends on the triangles alone, which the optimisation keeps: found once (the
+    // trapped nodes' removal carries it over to the triangles it leaves).
     MeshCopy copy;
     engine_.read_mesh(copy);
     if (problem_.params.cleanup) {
