@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/delaunay/exact_predicates.h"
 #include "core/mesh/boundary.h"
 
 namespace meshd {
@@ -14,11 +15,6 @@ namespace {
 // A removal takes one triangle from each neighbour's star, which can leave a neighbour trapped
 // in turn; each pass removes trapped nodes of which no two share a triangle.
 constexpr int kMaxPasses = 8;
-
-int sign_of(Vec2 a, Vec2 b, Vec2 c) {
-  const double o = cross(b - a, c - a);
-  return (o > 0.0) - (o < 0.0);
-}
 
 class TrappedNodes {
  public:
@@ -98,12 +94,13 @@ class TrappedNodes {
       if (other < 0 || (c >= 0 && other != c)) return false;
       c = other;
     }
-    const int sense = sign_of(p[v], p[a], p[b]);
-    if (sense == 0 || sign_of(p[v], p[b], p[c]) != sense || sign_of(p[v], p[c], p[a]) != sense)
+    const int sense = orientation_sign(p[v], p[a], p[b]);
+    if (sense == 0 || orientation_sign(p[v], p[b], p[c]) != sense ||
+        orientation_sign(p[v], p[c], p[a]) != sense)
       return false;
     for (int j = 1; j < 3; ++j) {
       const auto& tri = t_[star[j]];
-      if (sign_of(p[tri[0]], p[tri[1]], p[tri[2]]) != sense) return false;
+      if (orientation_sign(p[tri[0]], p[tri[1]], p[tri[2]]) != sense) return false;
     }
     t_[star[0]] = {a, b, c};
     merged_into_[star[1]] = merged_into_[star[2]] = star[0];
