@@ -7,7 +7,7 @@
 #include "kernels/complete_gaps.h"
 #include "kernels/cuda_check.h"
 #include "kernels/keep_triangles.h"
-#include "kernels/predicates.cuh"
+#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/scan.h"
 #include "kernels/thread_index.cuh"
 

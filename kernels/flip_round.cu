@@ -6,7 +6,7 @@
 
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
-#include "kernels/predicates.cuh"
+#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/common/vec2.h"
+#include "core/delaunay/tri.cuh"
 #include "core/distmesh/clearance.cuh"
 #include "core/distmesh/initial_points.cuh"
 #include "core/distmesh/step_rule.cuh"
@@ -51,15 +52,7 @@ struct StepSums {
   double bar_l2;  // sum over nodes of their bars' L^2 before the step: 2 sum L^2 (gather only)
 };
 
-// A triangle's corners, or its neighbours: slot k across the edge opposite corner k, -1 on the
-// hull.
-struct Tri {
-  int32_t v[3];
-};
-// The slot of `nbr` (a triangle's neighbours) that holds triangle `value`.
-MESHD_HD inline int slot_of(const Tri& nbr, int32_t value) {
-  return nbr.v[0] == value ? 0 : (nbr.v[1] == value ? 1 : 2);
-}
+using meshd::Tri;  // core/delaunay/tri.cuh
 struct Bar {
   int32_t a, b;
 };

@@ -7,7 +7,7 @@
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
-#include "kernels/predicates.cuh"
+#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
