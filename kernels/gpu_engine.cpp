@@ -1,6 +1,7 @@
 #include "kernels/gpu_engine.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -23,6 +24,7 @@
 #include "kernels/launch.h"
 #include "kernels/loop_graph.h"
 #include "kernels/pinned_value.h"
+#include "kernels/point_insertion.h"
 #include "kernels/refine_level.h"
 #include "kernels/scan.h"
 
@@ -156,6 +158,8 @@ struct GpuEngine::Impl {
   gpu::RefineScratch refine_scratch;
   gpu::GapScratch gaps;
   gpu::LatticeScratch lattice;
+  gpu::InsertionScratch insertion;
+  gpu::InsertionCounts last_insertion;
   gpu::FinishScratch finish;
   // The last read_mesh's copy of this job was tidy: its triangles (kept in finish) are the
   // result's.
@@ -389,7 +393,10 @@ struct GpuEngine::Impl {
     return host;
   }
 
+  // A triangulation from scratch: the device's point insertion, its hull completed and flipped
+  // with exact predicates; CGAL on the host where that fails (a completion's checks).
   void full_triangulation() {
+    if (triangulate_on_device()) return;
     const Triangulation dt = delaunay_triangulate(download_points());
     static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
     tris.upload(reinterpret_cast<const Tri*>(dt.triangles.data()), dt.triangles.size(), stream);
@@ -397,6 +404,15 @@ struct GpuEngine::Impl {
     flipped_round.resize(tris.size());
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff,
                                      flipped_round.size() * sizeof(int32_t), stream));
+  }
+
+  bool triangulate_on_device() {
+    last_insertion = gpu::insert_points(p.span(), tris, nbrs, insertion, temp, stream);
+    // Every triangle is counter-clockwise by the insertion's exact predicates, and the gaps' by
+    // CGAL's: the flips need no orientation check.
+    prepared = covers_hull() || gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
+    prepared_checked = prepared;
+    return prepared && flip_prepared() >= 0;
   }
 
   // The initial triangulation (lattice_triangulation.h) for the first retriangulate; without
@@ -850,6 +866,33 @@ void GpuEngine::read_points(std::vector<Vec2>& points) {
   points.resize(s.n);
   s.p.download(points.data(), s.stream);
   s.sync();
+}
+
+Triangulation GpuEngine::delaunay(const std::vector<Vec2>& points, DelaunayTiming* timing) {
+  Impl& s = *impl_;
+  s.use_device();
+  s.n = static_cast<int64_t>(points.size());
+  s.nfix = 0;
+  s.p.upload(points.data(), points.size(), s.stream);
+  s.sync();
+  const auto t0 = std::chrono::steady_clock::now();
+  s.full_triangulation();
+  s.sync();
+  const auto t1 = std::chrono::steady_clock::now();
+  Triangulation out;
+  out.triangles.resize(s.tris.size());
+  out.neighbors.resize(s.nbrs.size());
+  static_assert(sizeof(Tri) == sizeof(std::array<int32_t, 3>));
+  s.tris.download(reinterpret_cast<Tri*>(out.triangles.data()), s.stream);
+  s.nbrs.download(reinterpret_cast<Tri*>(out.neighbors.data()), s.stream);
+  s.sync();
+  s.have_triangulation = false;
+  if (timing != nullptr) {
+    timing->seconds = std::chrono::duration<double>(t1 - t0).count();
+    timing->insertion_steps = s.last_insertion.insertion_steps;
+    timing->flip_steps = s.last_insertion.flip_steps;
+  }
+  return out;
 }
 
 void GpuEngine::read_triangles(std::vector<std::array<int32_t, 3>>& triangles) {

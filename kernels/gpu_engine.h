@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 
+#include "core/delaunay/delaunay.h"
 #include "core/distmesh/engine.h"
 
 namespace meshd {
@@ -43,6 +44,17 @@ class GpuEngine final : public Engine {
 
   // Meshes a small disk so that modules load and the arena holds a first set of buffers.
   void warm_up();
+
+  // The Delaunay triangulation of `points` alone (delaunay.h's contract, duplicates left out)
+  // as the engine's full triangulations build it: the device's point insertion, its hull
+  // completed and flipped with exact predicates. For the builder's tests and benchmark; ends the
+  // current job. `timing`: the device's seconds from points to triangles, both on the device.
+  struct DelaunayTiming {
+    double seconds = 0.0;
+    int insertion_steps = 0;
+    int flip_steps = 0;
+  };
+  Triangulation delaunay(const std::vector<Vec2>& points, DelaunayTiming* timing = nullptr);
 
   // How each node sums its bar forces: a gather through the bar CSR (the default: no atomics,
   // the same bits every run and on the CPU) or float atomics from each bar (for comparison).
