@@ -2,10 +2,10 @@
 # Runs on the GPU machine from a bundle of the executables (.gpu/, made by the gpu-bundle tool):
 # the GPU tests, compute-sanitizer (memcheck, racecheck) on the agreement tests, a per-phase
 # profile, the GPU benchmark, and the service on a GPU (its tests, meshd + meshctl end to end,
-# the overhead), many small jobs through meshd (throughput), and one GPU against all of a host's
-# (gpus), and the 3D engine's steps on the GPU against the host's cores (volumes). Logs go to $OUT
-# (or ./gpu-logs).
-# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|primitives|primitives_cpu|service|throughput|gpus|volumes]...
+# the overhead), the device's Delaunay builder against CGAL (delaunay), many small jobs through
+# meshd (throughput), and one GPU against all of a host's (gpus), and the 3D engine's steps on
+# the GPU against the host's cores (volumes). Logs go to $OUT (or ./gpu-logs).
+# Usage: scripts/gpu_check.sh [tests|sanitize|profile|bench|delaunay|primitives|primitives_cpu|service|throughput|gpus|volumes]...
 set -uo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 run=$here/.gpu/run.sh
@@ -42,6 +42,9 @@ for step in "${steps[@]}"; do
         echo "compute-sanitizer $tool, step graph $graph: exit $? ($(grep -cE '(ERROR|RACECHECK) SUMMARY: 0' "$log") clean summaries)"
         tail -3 "$log"
       done ;;
+    delaunay)
+      # The device's Delaunay builder against CGAL on this host, at the issue's sizes.
+      $run delaunay_bench --repeat 3 100000 1000000 4000000 2>&1 | tee "$out/delaunay.log" ;;
     profile)
       # Seconds per phase of the GPU engine at the issue's two sizes (best of 3).
       req="examples/g1_disk.textproto examples/g2_square_hole.textproto"
