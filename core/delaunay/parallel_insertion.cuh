@@ -94,6 +94,35 @@ MESHD_HD inline bool holds_edge(const Tri& t, int32_t a, int32_t b) {
   return found == 2;
 }
 
+// The quadrilateral across edge k of triangle t = (a, b, c), k the slot of a: the neighbour u =
+// (d, c, b) and the four outer neighbours, each named by its edge.
+struct Quad {
+  int32_t a, b, c, d, u;
+  int32_t n_ab, n_ca, n_bd, n_dc;
+};
+MESHD_HD inline Quad quad_across(const InsertionState& s, int32_t t, int k) {
+  const Tri tv = s.tris[t], tn = s.nbrs[t];
+  Quad q;
+  q.a = tv.v[k];
+  q.b = tv.v[next(k)];
+  q.c = tv.v[prev(k)];
+  q.n_ab = tn.v[prev(k)];
+  q.n_ca = tn.v[next(k)];
+  q.u = tn.v[k];
+  const Tri uv = s.tris[q.u], un = s.nbrs[q.u];
+  const int j = slot_of(un, t);
+  q.d = uv.v[j];
+  q.n_bd = un.v[next(j)];
+  q.n_dc = un.v[prev(j)];
+  return q;
+}
+
+// Triangle x's old area now lies in x and `other` alone.
+MESHD_HD inline void share_area(const InsertionState& s, int32_t x, int32_t other) {
+  s.family[2 * x] = other;
+  s.family[2 * x + 1] = -1;
+}
+
 }  // namespace insertion_detail
 
 // Point i's claim on its triangle: the squared distance to the triangle's centroid, or for a
@@ -141,8 +170,6 @@ MESHD_HD inline bool point_wins(const InsertionState& s, int32_t i) {
 // Step 3: the winner i splits its triangle (new slots `fresh` and fresh + 1), or the two of its
 // edge. The outer neighbours keep their old slots until relink_triangle.
 MESHD_HD inline void insert_point(const InsertionState& s, int32_t i, int32_t fresh, int32_t step) {
-  using insertion_detail::next;
-  using insertion_detail::prev;
   const int32_t t = s.loc[i];
   const int32_t s1 = fresh, s2 = fresh + 1;
   const Tri tv = s.tris[t], tn = s.nbrs[t];
@@ -161,26 +188,18 @@ MESHD_HD inline void insert_point(const InsertionState& s, int32_t i, int32_t fr
     return;
   }
   // i on edge b-c of t = (a, b, c); u = (d, c, b) across it.
-  const int k = s.edge[i];
-  const int32_t a = tv.v[k], b = tv.v[next(k)], c = tv.v[prev(k)];
-  const int32_t n_ab = tn.v[prev(k)], n_ca = tn.v[next(k)];
-  const int32_t u = tn.v[k];
-  const Tri uv = s.tris[u], un = s.nbrs[u];
-  const int j = slot_of(un, t);
-  const int32_t d = uv.v[j];
-  const int32_t n_bd = un.v[next(j)], n_dc = un.v[prev(j)];
-  s.tris[t] = Tri{{a, b, i}};
-  s.nbrs[t] = Tri{{s2, s1, n_ab}};
-  s.tris[s1] = Tri{{a, i, c}};
-  s.nbrs[s1] = Tri{{u, n_ca, t}};
-  s.tris[u] = Tri{{d, c, i}};
-  s.nbrs[u] = Tri{{s1, s2, n_dc}};
-  s.tris[s2] = Tri{{d, i, b}};
-  s.nbrs[s2] = Tri{{t, n_bd, u}};
-  s.family[2 * t] = s1;
-  s.family[2 * t + 1] = -1;
-  s.family[2 * u] = s2;
-  s.family[2 * u + 1] = -1;
+  const insertion_detail::Quad q = insertion_detail::quad_across(s, t, s.edge[i]);
+  const int32_t u = q.u;
+  s.tris[t] = Tri{{q.a, q.b, i}};
+  s.nbrs[t] = Tri{{s2, s1, q.n_ab}};
+  s.tris[s1] = Tri{{q.a, i, q.c}};
+  s.nbrs[s1] = Tri{{u, q.n_ca, t}};
+  s.tris[u] = Tri{{q.d, q.c, i}};
+  s.nbrs[u] = Tri{{s1, s2, q.n_dc}};
+  s.tris[s2] = Tri{{q.d, i, q.b}};
+  s.nbrs[s2] = Tri{{t, q.n_bd, u}};
+  insertion_detail::share_area(s, t, s1);
+  insertion_detail::share_area(s, u, s2);
   s.stamp[t] = s.stamp[s1] = s.stamp[u] = s.stamp[s2] = step;
 }
 
@@ -288,28 +307,19 @@ inline bool flips_may_wait(int64_t first_step_flips, int64_t step_flips) {
 // The flip itself, by the triangle t that owns an edge winning both its triangles: t = (a, b, c)
 // and u = (d, c, b) become (a, b, d) and (a, d, c). Counts the flip in s.flips.
 MESHD_HD inline void flip_won_edge(const InsertionState& s, int32_t t, int32_t step) {
-  using insertion_detail::next;
-  using insertion_detail::prev;
   const unsigned long long key = s.vote[t];
   const uint32_t id = static_cast<uint32_t>(key);
   if (key == kNoVote || id / 3 != static_cast<uint32_t>(t)) return;
   const int k = static_cast<int>(id % 3);
-  const Tri tv = s.tris[t], tn = s.nbrs[t];
-  const int32_t u = tn.v[k];
+  const int32_t u = s.nbrs[t].v[k];
   if (s.vote[u] != key) return;
-  const Tri uv = s.tris[u], un = s.nbrs[u];
-  const int j = slot_of(un, t);
-  const int32_t a = tv.v[k], b = tv.v[next(k)], c = tv.v[prev(k)], d = uv.v[j];
-  const int32_t n_ab = tn.v[prev(k)], n_ca = tn.v[next(k)];
-  const int32_t n_bd = un.v[next(j)], n_dc = un.v[prev(j)];
-  s.tris[t] = Tri{{a, b, d}};
-  s.nbrs[t] = Tri{{n_bd, u, n_ab}};
-  s.tris[u] = Tri{{a, d, c}};
-  s.nbrs[u] = Tri{{n_dc, n_ca, t}};
-  s.family[2 * t] = u;
-  s.family[2 * t + 1] = -1;
-  s.family[2 * u] = t;
-  s.family[2 * u + 1] = -1;
+  const insertion_detail::Quad q = insertion_detail::quad_across(s, t, k);
+  s.tris[t] = Tri{{q.a, q.b, q.d}};
+  s.nbrs[t] = Tri{{q.n_bd, u, q.n_ab}};
+  s.tris[u] = Tri{{q.a, q.d, q.c}};
+  s.nbrs[u] = Tri{{q.n_dc, q.n_ca, t}};
+  insertion_detail::share_area(s, t, u);
+  insertion_detail::share_area(s, u, t);
   s.stamp[t] = s.stamp[u] = step;
   insertion_detail::count_one(s.flips);
 }
