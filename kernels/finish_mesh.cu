@@ -15,7 +15,8 @@ namespace {
 __global__ void flag_triangle_facts(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                     DeviceSpan<const Tri> nbrs, double below_quality,
                                     DeviceSpan<uint8_t> edge_flag, DeviceSpan<uint8_t> below_flag,
-                                    DeviceSpan<uint8_t> used, int32_t* turned) {
+                                    DeviceSpan<uint8_t> used, DeviceSpan<uint8_t> on_boundary,
+                                    DeviceSpan<int32_t> valence, int32_t* turned) {
   const int64_t t = thread_index();
   if (t >= tris.size) return;
   const Tri tri = tris[t], nbr = nbrs[t];
@@ -24,14 +25,21 @@ __global__ void flag_triangle_facts(DeviceSpan<const Vec2> p, DeviceSpan<const T
   if (cross(b - a, c - a) < 0.0) atomicAdd(turned, 1);
   // Half-edge 3 t + k runs from corner k to corner k + 1, across from corner k + 2.
   for (int k = 0; k < 3; ++k) {
-    edge_flag[3 * t + k] = nbr.v[(k + 2) % 3] < 0;
+    const bool open = nbr.v[(k + 2) % 3] < 0;
+    edge_flag[3 * t + k] = open;
+    if (open) on_boundary[tri.v[k]] = on_boundary[tri.v[(k + 1) % 3]] = 1;
     used[tri.v[k]] = 1;
+    atomicAdd(&valence[tri.v[k]], 1);
   }
 }
 
-__global__ void count_unused(DeviceSpan<const uint8_t> used, int32_t* unused) {
+// counts[1]: unused points; counts[2]: free interior nodes of valence three (trapped_nodes.h).
+__global__ void count_nodes(DeviceSpan<const uint8_t> used, DeviceSpan<const uint8_t> on_boundary,
+                            DeviceSpan<const int32_t> valence, int64_t nfix, int32_t* counts) {
   const int64_t i = thread_index();
-  if (i < used.size && !used[i]) atomicAdd(unused, 1);
+  if (i >= used.size) return;
+  if (!used[i]) atomicAdd(&counts[1], 1);
+  if (i >= nfix && valence[i] == 3 && !on_boundary[i]) atomicAdd(&counts[2], 1);
 }
 
 __global__ void scatter_flagged(DeviceSpan<const uint8_t> flag, DeviceSpan<const int32_t> position,
@@ -110,32 +118,40 @@ __global__ void __launch_bounds__(kFinishBlock) total_quality(DeviceSpan<Quality
 }  // namespace
 
 MeshFacts find_mesh_facts(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
-                          DeviceSpan<const Tri> nbrs, double below_quality, FinishScratch& s,
-                          DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
+                          DeviceSpan<const Tri> nbrs, double below_quality, int64_t nfix,
+                          FinishScratch& s, DeviceBuffer<uint8_t>& temp, cudaStream_t stream) {
   const int64_t m = tris.size;
   s.edge_flag.resize(3 * m);
   s.below_flag.resize(m);
   s.used.resize(p.size);
-  s.counts.resize(2);
-  MESHD_CUDA_CHECK(cudaMemsetAsync(s.counts.data(), 0, 2 * sizeof(int32_t), stream));
-  if (p.size > 0) MESHD_CUDA_CHECK(cudaMemsetAsync(s.used.data(), 0, p.size, stream));
+  s.on_boundary.resize(p.size);
+  s.valence.resize(p.size);
+  s.counts.resize(3);
+  MESHD_CUDA_CHECK(cudaMemsetAsync(s.counts.data(), 0, 3 * sizeof(int32_t), stream));
+  if (p.size > 0) {
+    MESHD_CUDA_CHECK(cudaMemsetAsync(s.used.data(), 0, p.size, stream));
+    MESHD_CUDA_CHECK(cudaMemsetAsync(s.on_boundary.data(), 0, p.size, stream));
+    MESHD_CUDA_CHECK(cudaMemsetAsync(s.valence.data(), 0, p.size * sizeof(int32_t), stream));
+  }
   if (m > 0) {
     flag_triangle_facts<<<blocks_for(m), kBlock, 0, stream>>>(
         p, tris, nbrs, below_quality, s.edge_flag.span(), s.below_flag.span(), s.used.span(),
-        s.counts.data());
+        s.on_boundary.span(), s.valence.span(), s.counts.data());
     MESHD_CHECK_LAUNCH("flag_triangle_facts");
   }
   if (p.size > 0) {
-    count_unused<<<blocks_for(p.size), kBlock, 0, stream>>>(s.used.span(), s.counts.data() + 1);
-    MESHD_CHECK_LAUNCH("count_unused");
+    count_nodes<<<blocks_for(p.size), kBlock, 0, stream>>>(s.used.span(), s.on_boundary.span(),
+                                                           s.valence.span(), nfix, s.counts.data());
+    MESHD_CHECK_LAUNCH("count_nodes");
   }
   MeshFacts facts;
   facts.boundary = flagged_indices(s.edge_flag.span(), s.edge_position, s.ids, temp, stream);
   facts.below = flagged_indices(s.below_flag.span(), s.below_position, s.ids, temp, stream);
-  int32_t counts[2];
+  int32_t counts[3];
   s.counts.download(counts, stream);
   MESHD_CUDA_CHECK(cudaStreamSynchronize(stream));
   facts.tidy = counts[0] == 0 && counts[1] == 0;
+  facts.none_trapped = counts[2] == 0;
   return facts;
 }
 

@@ -27,9 +27,10 @@ struct QualitySums {
 
 // Buffers of the finish, kept between jobs (the engine's arena).
 struct FinishScratch {
-  DeviceBuffer<uint8_t> edge_flag, below_flag, used;
+  DeviceBuffer<uint8_t> edge_flag, below_flag, used, on_boundary;
+  DeviceBuffer<int32_t> valence;
   DeviceBuffer<int32_t> edge_position, below_position, ids;
-  DeviceBuffer<int32_t> counts;  // turned-over triangles, unused points
+  DeviceBuffer<int32_t> counts;  // turned-over triangles, unused points, trapped nodes
   DeviceBuffer<Tri> tris;        // the engine's copy of the result's triangles
   DeviceBuffer<QualitySums> partial;
 };
@@ -39,13 +40,17 @@ struct MeshFacts {
   std::vector<int32_t> boundary;  // boundary_half_edges's ids (core/mesh/boundary.h)
   std::vector<int32_t> below;     // oriented_radius_ratio < below_quality, increasing
   bool tidy = false;              // every point used, no triangle turning clockwise
+  // No node from nfix on, off the boundary, is a corner of exactly three triangles: the finish
+  // need not look for trapped nodes (trapped_nodes.h).
+  bool none_trapped = false;
 };
 
-// tris: the kept triangles (#M, corners in p, #N) and nbrs their links (slot k across the edge
-// opposite corner k, -1 where the neighbour is not kept). Waits for the stream.
+// tris: the kept triangles (#M, corners in p, #N, the first nfix fixed) and nbrs their links
+// (slot k across the edge opposite corner k, -1 where the neighbour is not kept). Waits for the
+// stream.
 MeshFacts find_mesh_facts(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
-                          DeviceSpan<const Tri> nbrs, double below_quality, FinishScratch& s,
-                          DeviceBuffer<uint8_t>& temp, cudaStream_t stream);
+                          DeviceSpan<const Tri> nbrs, double below_quality, int64_t nfix,
+                          FinishScratch& s, DeviceBuffer<uint8_t>& temp, cudaStream_t stream);
 
 // summarize_quality (quality.h) of the triangles `tris` over `p`: the same radius ratios, bins
 // and smallest angle; the mean summed in another order. Waits for the stream.

@@ -914,11 +914,13 @@ void GpuEngine::read_mesh(MeshCopy& copy) {
   // read_triangles leaves the kept triangles and their links in tris_tmp and nbrs_tmp.
   read_triangles(copy.triangles);
   s.finish.tris.assign(s.tris_tmp, s.stream);
-  gpu::MeshFacts facts = gpu::find_mesh_facts(s.p.span(), s.tris_tmp.span(), s.nbrs_tmp.span(),
-                                              kOptimizeBelowQuality, s.finish, s.temp, s.stream);
+  gpu::MeshFacts facts =
+      gpu::find_mesh_facts(s.p.span(), s.tris_tmp.span(), s.nbrs_tmp.span(), kOptimizeBelowQuality,
+                           s.nfix, s.finish, s.temp, s.stream);
   copy.boundary = std::move(facts.boundary);
   copy.below = std::move(facts.below);
   copy.tidy = s.copy_tidy = facts.tidy;
+  copy.none_trapped = facts.none_trapped;
 }
 
 QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {

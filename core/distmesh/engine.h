@@ -54,6 +54,9 @@ struct MeshCopy {
   // Every point is a corner of a triangle and every triangle turns counter-clockwise: assemble_mesh
   // has nothing to renumber or turn.
   bool tidy = false;
+  // Where the engine counted them: no free interior node has exactly three triangles, so the
+  // finish need not look for trapped nodes (trapped_nodes.h). The GPU engine counts on the device.
+  bool none_trapped = false;
 };
 
 // max_removed for a removal that may take any number of nodes.

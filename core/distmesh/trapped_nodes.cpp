@@ -164,6 +164,7 @@ class TrappedNodes {
 }  // namespace
 
 int64_t remove_trapped_nodes(MeshCopy& mesh, int32_t nfix) {
+  if (mesh.none_trapped) return 0;
   return TrappedNodes(mesh, nfix).run();
 }
 

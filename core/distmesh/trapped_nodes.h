@@ -21,7 +21,8 @@ namespace meshd {
 // points stay in mesh.points, used by no triangle (mesh.tidy becomes false); mesh.boundary
 // follows the renumbered triangles, and mesh.below, when present, gains the new triangles.
 // A star that is not a plain fan of three (a fold, or its centre outside its neighbours'
-// triangle) is left alone. Returns the number of nodes removed.
+// triangle) is left alone. Returns the number of nodes removed; nothing, at once, where the engine
+// found none (mesh.none_trapped).
 int64_t remove_trapped_nodes(MeshCopy& mesh, int32_t nfix);
 
 }  // namespace meshd

@@ -78,6 +78,18 @@ TEST(GpuFinish, TheDevicesCopyMatchesTheHostsDefinitions) {
     const bool all_used = std::find(used.begin(), used.end(), 0) == used.end();
     EXPECT_EQ(copy.tidy, all_used && !turned) << id;
 
+    // Trapped nodes as trapped_nodes.h defines them: fixed ones and boundary ones excluded.
+    std::vector<int> valence(copy.points.size(), 0);
+    std::vector<char> on_boundary(copy.points.size(), 0);
+    for (const auto& v : copy.triangles)
+      for (int32_t k : v) ++valence[k];
+    for (const auto& e : half_edge_ends(copy.triangles, copy.boundary))
+      on_boundary[e[0]] = on_boundary[e[1]] = 1;
+    int trapped = 0;
+    for (size_t v = c.fixed_points.size(); v < copy.points.size(); ++v)
+      trapped += valence[v] == 3 && !on_boundary[v];
+    EXPECT_EQ(copy.none_trapped, trapped == 0) << id << ": " << trapped << " trapped";
+
     // The quality as it stands, then after the optimisation moved nodes.
     Mesh mesh = assemble_mesh(c, copy.points, copy.triangles, copy.boundary, copy.tidy);
     expect_same_quality(gpu.measure_quality(mesh, false), summarize_quality(mesh), id);

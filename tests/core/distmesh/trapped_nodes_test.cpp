@@ -68,6 +68,14 @@ TEST(TrappedNodes, ANodeOfThreeTrianglesGivesWayToItsNeighboursTriangle) {
   EXPECT_FALSE(m.tidy) << "node 3 is no triangle's corner any more";
 }
 
+TEST(TrappedNodes, AnEngineThatFoundNoneIsBelieved) {
+  MeshCopy m = lone_star();
+  m.none_trapped = true;  // as the GPU engine reports it after counting on the device
+  const auto before = m.triangles;
+  EXPECT_EQ(remove_trapped_nodes(m, 0), 0);
+  EXPECT_EQ(m.triangles, before);
+}
+
 TEST(TrappedNodes, FixedAndBoundaryNodesStay) {
   MeshCopy fixed = lone_star();
   std::swap(fixed.points[0], fixed.points[3]);  // the centre becomes point 0, fixed
