@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/common/error.h"
+#include "core/delaunay/parallel_insertion.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/keep_triangles.h"
 #include "kernels/point_insertion.h"
@@ -96,8 +97,6 @@ __global__ void flag_real_triangles(DeviceSpan<const Tri> tris, int32_t n, uint8
   keep[t] = v.v[0] < n && v.v[1] < n && v.v[2] < n;
 }
 
-void check(const char* kernel) { MESHD_CHECK_LAUNCH(kernel); }
-
 }  // namespace
 
 InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
@@ -118,7 +117,7 @@ InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
   MESHD_CUDA_CHECK(cudaMemcpyAsync(s.bounds.data(), s.h_bounds.get(), sizeof start,
                                    cudaMemcpyHostToDevice, stream));
   point_bounds<<<std::min<int64_t>(blocks_for(n), 1024), kBlock, 0, stream>>>(p, s.bounds.data());
-  check("point_bounds");
+  MESHD_CHECK_LAUNCH("point_bounds");
   MESHD_CUDA_CHECK(cudaMemcpyAsync(s.h_bounds.get(), s.bounds.data(), sizeof start,
                                    cudaMemcpyDeviceToHost, stream));
   MESHD_CUDA_CHECK(cudaStreamSynchronize(stream));
@@ -157,7 +156,7 @@ InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
                           s.stamp.data(),       s.counters.data(),
                           s.counters.data() + 1};
   start_insertion<<<1, 1, 0, stream>>>(st);
-  check("start_insertion");
+  MESHD_CHECK_LAUNCH("start_insertion");
 
   const int64_t point_blocks = blocks_for(n);
   int32_t m = 1, step = 0;
@@ -170,14 +169,14 @@ InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
       MESHD_CUDA_CHECK(
           cudaMemsetAsync(s.vote.data(), 0xff, m * sizeof(unsigned long long), stream));
       vote_flips<<<blocks_for(m), kBlock, 0, stream>>>(st, m, since, step);
-      check("vote_flips");
+      MESHD_CHECK_LAUNCH("vote_flips");
       MESHD_CUDA_CHECK(cudaMemsetAsync(s.counters.data(), 0, sizeof(int32_t), stream));
       flip_edges<<<blocks_for(m), kBlock, 0, stream>>>(st, m, step);
-      check("flip_edges");
+      MESHD_CHECK_LAUNCH("flip_edges");
       relink<<<blocks_for(m), kBlock, 0, stream>>>(st, m, step);
-      check("relink");
+      MESHD_CHECK_LAUNCH("relink");
       relocate<<<point_blocks, kBlock, 0, stream>>>(st, step);
-      check("relocate");
+      MESHD_CHECK_LAUNCH("relocate");
       MESHD_CUDA_CHECK(cudaMemcpyAsync(h, s.counters.data(), 2 * sizeof(int32_t),
                                        cudaMemcpyDeviceToHost, stream));
       MESHD_CUDA_CHECK(cudaStreamSynchronize(stream));
@@ -199,20 +198,20 @@ InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
     if (since < 0) since = step;
     MESHD_CUDA_CHECK(cudaMemsetAsync(s.vote.data(), 0xff, m * sizeof(unsigned long long), stream));
     vote_points<<<point_blocks, kBlock, 0, stream>>>(st);
-    check("vote_points");
+    MESHD_CHECK_LAUNCH("vote_points");
     flag_winners<<<point_blocks, kBlock, 0, stream>>>(st, s.flags.data());
-    check("flag_winners");
+    MESHD_CHECK_LAUNCH("flag_winners");
     exclusive_scan(s.flags.data(), s.position.data(), n, temp, stream);
     const int64_t won = scan_total(s.position.data(), s.flags.data(), n, stream);
     if (won == 0) break;
     insert_winners<<<point_blocks, kBlock, 0, stream>>>(st, s.flags.data(), s.position.data(), m,
                                                         step);
-    check("insert_winners");
+    MESHD_CHECK_LAUNCH("insert_winners");
     m += 2 * static_cast<int32_t>(won);
     relink<<<blocks_for(m), kBlock, 0, stream>>>(st, m, step);
-    check("relink");
+    MESHD_CHECK_LAUNCH("relink");
     relocate<<<point_blocks, kBlock, 0, stream>>>(st, step);
-    check("relocate");
+    MESHD_CHECK_LAUNCH("relocate");
     ++counts.insertion_steps;
     since = flip(since, true);
   }
@@ -220,7 +219,7 @@ InsertionCounts insert_points(DeviceSpan<const Vec2> p, DeviceBuffer<Tri>& tris,
   tris.resize(m);
   nbrs.resize(m);
   flag_real_triangles<<<blocks_for(m), kBlock, 0, stream>>>(tris.span(), n, s.flags.data());
-  check("flag_real_triangles");
+  MESHD_CHECK_LAUNCH("flag_real_triangles");
   keep_triangles({s.flags.data(), m}, tris, nbrs, {s.position, s.tris_tmp, s.nbrs_tmp}, temp,
                  stream);
   return counts;

@@ -9,7 +9,6 @@
 #include <cstdint>
 
 #include "core/common/vec2.h"
-#include "core/delaunay/parallel_insertion.cuh"
 #include "kernels/device_buffer.h"
 #include "kernels/launch.h"
 #include "kernels/pinned_value.h"

@@ -161,7 +161,6 @@ Triangulation insertion_triangulate(const std::vector<Vec2>& points, InsertionSt
     const RepairResult repaired = lawson_repair(distinct, std::vector<char>(t.triangles.size(), 1),
                                                 std::vector<char>(distinct.size(), 0), t);
     if (!repaired.ok) throw Error(ErrorCode::kInternal, "", "point insertion left a fold");
-    st.repair_flips = repaired.flips;
   }
   for (auto& tri : t.triangles)
     for (int32_t& v : tri) v = kept[v];

@@ -14,8 +14,7 @@ namespace meshd {
 struct InsertionStats {
   int insertion_steps = 0;
   int flip_steps = 0;
-  int64_t flips = 0;         // by the insertion's certain tests
-  int64_t repair_flips = 0;  // by the exact Lawson repair after the completion
+  int64_t flips = 0;  // by the insertion's certain tests
   int64_t duplicates = 0;
   bool fell_back = false;  // the completion's checks failed: CGAL from scratch instead
 };
