@@ -2,15 +2,42 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 
+#include "kernels/cuda_check.h"
 #include "kernels/scan.h"
 
 namespace meshd::gpu {
 
+namespace {
+// CUB's query of a scan's temporary storage is a dispatch of its own, about as costly on the host
+// as the scan's: a job's scans repeat a few sizes between rebuilds, so the answers are kept, per
+// thread (an engine's calls stay on its thread) and per device.
+struct ScanBytes {
+  int kind = -1, device = -1;
+  int64_t n = -1;
+  size_t bytes = 0;
+};
+template <typename Query>
+size_t scan_bytes(int kind, int64_t n, Query query) {
+  thread_local ScanBytes kept[8];
+  thread_local int next = 0;
+  int device = 0;
+  MESHD_CUDA_CHECK(cudaGetDevice(&device));
+  for (const ScanBytes& k : kept)
+    if (k.kind == kind && k.device == device && k.n == n) return k.bytes;
+  size_t bytes = 0;
+  MESHD_CUDA_CHECK(query(bytes));
+  kept[next] = {kind, device, n, bytes};
+  next = (next + 1) % 8;
+  return bytes;
+}
+}  // namespace
+
 void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
                     cudaStream_t stream) {
   if (n == 0) return;
-  size_t bytes = 0;
-  MESHD_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, n, stream));
+  size_t bytes = scan_bytes(0, n, [&](size_t& b) {
+    return cub::DeviceScan::ExclusiveSum(nullptr, b, in, out, n, stream);
+  });
   temp.resize(std::max(bytes, temp.size()));
   MESHD_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.data(), bytes, in, out, n, stream));
 }
@@ -18,9 +45,10 @@ void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uin
 void exclusive_scan(const uint8_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
                     cudaStream_t stream) {
   if (n == 0) return;
-  size_t bytes = 0;
-  MESHD_CUDA_CHECK(cub::DeviceScan::ExclusiveScan(nullptr, bytes, in, out, cuda::std::plus<>{},
-                                                  int32_t{0}, n, stream));
+  size_t bytes = scan_bytes(1, n, [&](size_t& b) {
+    return cub::DeviceScan::ExclusiveScan(nullptr, b, in, out, cuda::std::plus<>{}, int32_t{0}, n,
+                                          stream);
+  });
   temp.resize(std::max(bytes, temp.size()));
   MESHD_CUDA_CHECK(cub::DeviceScan::ExclusiveScan(temp.data(), bytes, in, out, cuda::std::plus<>{},
                                                   int32_t{0}, n, stream));
@@ -39,6 +67,12 @@ int64_t last_position_plus_flag(const int32_t* position, const Flag* flag, int64
       cudaMemcpyAsync(&last, flag + n - 1, sizeof(Flag), cudaMemcpyDeviceToHost, stream));
   MESHD_CUDA_CHECK(cudaStreamSynchronize(stream));
   return int64_t{at} + last;
+}
+
+template <typename Flag>
+__global__ void write_scan_total(const int32_t* position, const Flag* flag, int64_t n,
+                                 int64_t* total) {
+  *total = n == 0 ? 0 : int64_t{position[n - 1]} + flag[n - 1];
 }
 
 template <typename Key>
@@ -60,6 +94,17 @@ int64_t scan_total(const int32_t* position, const uint8_t* flag, int64_t n, cuda
 }
 int64_t scan_total(const int32_t* position, const int32_t* flag, int64_t n, cudaStream_t stream) {
   return last_position_plus_flag(position, flag, n, stream);
+}
+
+void launch_scan_total(const int32_t* position, const uint8_t* flag, int64_t n, int64_t* total,
+                       cudaStream_t stream) {
+  write_scan_total<<<1, 1, 0, stream>>>(position, flag, n, total);
+  MESHD_CHECK_LAUNCH("write_scan_total");
+}
+void launch_scan_total(const int32_t* position, const int32_t* flag, int64_t n, int64_t* total,
+                       cudaStream_t stream) {
+  write_scan_total<<<1, 1, 0, stream>>>(position, flag, n, total);
+  MESHD_CHECK_LAUNCH("write_scan_total");
 }
 
 void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,

@@ -18,6 +18,11 @@ void exclusive_scan(const uint8_t* in, int32_t* out, int64_t n, DeviceBuffer<uin
 // back to the host (which waits for the stream); 0 for n = 0.
 int64_t scan_total(const int32_t* position, const uint8_t* flag, int64_t n, cudaStream_t stream);
 int64_t scan_total(const int32_t* position, const int32_t* flag, int64_t n, cudaStream_t stream);
+// The same total left on the device in *total, for a caller that reads several at once.
+void launch_scan_total(const int32_t* position, const uint8_t* flag, int64_t n, int64_t* total,
+                       cudaStream_t stream);
+void launch_scan_total(const int32_t* position, const int32_t* flag, int64_t n, int64_t* total,
+                       cudaStream_t stream);
 // Stable: equal keys keep the order of values_in, which makes the CSR deterministic.
 void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,
                 int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
