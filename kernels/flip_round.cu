@@ -3,16 +3,24 @@
 #include <cooperative_groups.h>
 
 #include <algorithm>
+#include <cstddef>
 
+#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
-#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
 namespace {
 
-__device__ inline int64_t stride() { return static_cast<int64_t>(gridDim.x) * blockDim.x; }
+// The threads that share a phase's items: the whole grid, or in the loop's tail one block.
+struct Lanes {
+  int64_t first, step;
+};
+__device__ inline Lanes grid_lanes() {
+  return {thread_index(), static_cast<int64_t>(gridDim.x) * blockDim.x};
+}
+__device__ inline Lanes block_lanes() { return {threadIdx.x, blockDim.x}; }
 
 // Appends t to `list` unless it is there already (its stamp says so).
 __device__ inline void push(int32_t t, int32_t stamp, int32_t* stamps, int32_t* list,
@@ -42,6 +50,11 @@ __device__ void open_round_body(FlipBatch* b, bool force_full) {
     b->full = 1;
   }
   if (c->settled) return;
+  // The repair's orientation check found a triangle turned over: its caller drops or rebuilds.
+  if (c->fatal > 0 || c->dropped > 0) {
+    c->settled = 1;
+    return;
+  }
   if (c->checked && c->candidates == 0) {
     c->settled = 1;
     return;
@@ -57,14 +70,14 @@ __device__ void open_round_body(FlipBatch* b, bool force_full) {
 }
 __global__ void open_round(FlipBatch* b, bool force_full) { open_round_body(b, force_full); }
 
-__device__ void test_edges_body(const FlipBatch& b) {
+__device__ void test_edges_body(const FlipBatch& b, Lanes lanes) {
   TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
   const int64_t n = b.round_full ? b.tris.size : c->queued[s.in];
   const int32_t* in = b.work[s.in];
   const int32_t* in_stamp = b.work_stamp[s.in];
-  for (int64_t i = thread_index(); i < n; i += stride()) {
+  for (int64_t i = lanes.first; i < n; i += lanes.step) {
     const auto t = static_cast<int32_t>(b.round_full ? i : in[i]);
     const Tri tri = b.tris[t], nbr = b.nbrs[t];
     for (int k = 0; k < 3; ++k) {
@@ -91,7 +104,7 @@ __device__ void test_edges_body(const FlipBatch& b) {
     }
   }
 }
-__global__ void test_edges(const FlipBatch* b) { test_edges_body(*b); }
+__global__ void test_edges(const FlipBatch* b) { test_edges_body(*b, grid_lanes()); }
 
 __global__ void vote_edges(const FlipBatch* bp, DeviceSpan<const int32_t> edges) {
   const FlipBatch& b = *bp;
@@ -106,12 +119,12 @@ __global__ void vote_edges(const FlipBatch* bp, DeviceSpan<const int32_t> edges)
 
 // The flip of edge bc between t = [a, b, c] and u = [d, c, b] into t' = [a, b, d], u' = [a, d, c];
 // the outer neighbours keep their old ids here and are re-linked by relink.
-__device__ void flip_body(const FlipBatch& b) {
+__device__ void flip_body(const FlipBatch& b, Lanes lanes) {
   TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
   const int64_t n = c->voted;
-  for (int64_t i = thread_index(); i < n; i += stride()) {
+  for (int64_t i = lanes.first; i < n; i += lanes.step) {
     const int32_t t = b.voted[i];
     for (int k = 0; k < 3; ++k) {
       const int32_t id = t * 3 + k;
@@ -138,7 +151,7 @@ __device__ void flip_body(const FlipBatch& b) {
     }
   }
 }
-__global__ void flip(const FlipBatch* b) { flip_body(*b); }
+__global__ void flip(const FlipBatch* b) { flip_body(*b, grid_lanes()); }
 
 __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   bool h0 = false, h1 = false;
@@ -149,11 +162,11 @@ __device__ inline bool has_edge(const Tri& t, int32_t e0, int32_t e1) {
   return h0 && h1;
 }
 
-__device__ void relink_body(const FlipBatch& b) {
+__device__ void relink_body(const FlipBatch& b, Lanes lanes) {
   const TopologyCounters* c = b.counters;
   if (c->settled) return;
   const int64_t n = c->voted;
-  for (int64_t i = thread_index(); i < n; i += stride()) {
+  for (int64_t i = lanes.first; i < n; i += lanes.step) {
     const int32_t x = b.voted[i];
     if (b.flipped_round[x] != b.round) continue;
     const Tri tri = b.tris[x];
@@ -173,7 +186,7 @@ __device__ void relink_body(const FlipBatch& b) {
     }
   }
 }
-__global__ void relink(const FlipBatch* b) { relink_body(*b); }
+__global__ void relink(const FlipBatch* b) { relink_body(*b, grid_lanes()); }
 
 // Whether a loop on the device runs another round: the round found candidates, within
 // rounds_per_launch rounds of the launch. One thread, before the next round opens.
@@ -185,41 +198,90 @@ __device__ bool another_round(FlipBatch& b) {
 }
 
 // The voted triangles' votes go back, and those that did not flip test again next round.
-__device__ void close_round_body(const FlipBatch& b) {
+__device__ void close_round_body(const FlipBatch& b, Lanes lanes) {
   const TopologyCounters* c = b.counters;
   if (c->settled) return;
   const Slots s = slots_of(b);
   const int64_t n = c->voted;
-  for (int64_t i = thread_index(); i < n; i += stride()) {
+  for (int64_t i = lanes.first; i < n; i += lanes.step) {
     const int32_t t = b.voted[i];
     b.vote[t] = 0x7f7f7f7f;
     push_next(b, s, t);
   }
 }
-__global__ void close_round(const FlipBatch* b) { close_round_body(*b); }
+__global__ void close_round(const FlipBatch* b) { close_round_body(*b, grid_lanes()); }
+
+// The triangles the current round tests; the next round's list, once this round has closed.
+__device__ inline int64_t round_work(const FlipBatch& b) {
+  return b.round_full ? b.tris.size : b.counters->queued[slots_of(b).in];
+}
+__device__ inline int64_t next_round_work(const FlipBatch& b) {
+  return b.counters->queued[slots_of(b).out];
+}
+
+// One round's phases after its opening; `barrier` stands where the kernels above end.
+template <class Barrier>
+__device__ void round_phases(FlipBatch& b, Lanes lanes, bool leader, Barrier barrier) {
+  test_edges_body(b, lanes);
+  barrier();
+  flip_body(b, lanes);
+  barrier();
+  relink_body(b, lanes);
+  barrier();
+  // another_round reads what close_round_body leaves alone, and the next round's opening
+  // waits for the barrier below: the decision may share the phase.
+  if (leader) b.again = another_round(b);
+  close_round_body(b, lanes);
+  barrier();
+}
 
 // The rounds in one cooperative launch: the same phases as the kernels above, a grid barrier
-// between two where those have a kernel boundary.
+// between two where those have a kernel boundary. A cascade's tail, once a round's list is short
+// enough for one block (tail_items), runs in block 0 alone with block barriers, a fraction of a
+// grid barrier's cost; should its list grow past kTailGrowth times that, the launch ends and the
+// host launches the grid again.
+constexpr int64_t kTailGrowth = 4;
 __global__ void flip_loop(FlipBatch* bp) {
   namespace cg = cooperative_groups;
   const cg::grid_group grid = cg::this_grid();
   FlipBatch& b = *bp;
+  const bool leader = grid.thread_rank() == 0;
   for (;;) {
-    if (grid.thread_rank() == 0) open_round_body(bp, false);
+    // The decision is the leader's, in a field that only the grid's rounds write: a block that
+    // reads it late still finds it, however far block 0 has gone on alone.
+    if (leader) {
+      open_round_body(bp, false);
+      b.tail = round_work(b) <= b.tail_items;
+    }
     grid.sync();
-    test_edges_body(b);
-    grid.sync();
-    flip_body(b);
-    grid.sync();
-    relink_body(b);
-    grid.sync();
-    // another_round reads what close_round_body leaves alone, and the next round's opening
-    // waits for the barrier below: the decision may share the phase.
-    if (grid.thread_rank() == 0) b.again = another_round(b);
-    close_round_body(b);
-    grid.sync();
+    if (b.tail) break;
+    round_phases(b, grid_lanes(), leader, [&] { grid.sync(); });
     if (!b.again) return;
   }
+  if (blockIdx.x != 0) return;
+  for (;;) {
+    round_phases(b, block_lanes(), leader, [] { __syncthreads(); });
+    if (!b.again) return;
+    if (next_round_work(b) > kTailGrowth * b.tail_items) {
+      // Unopened, the round waits for the next launch, which counts its rounds afresh.
+      if (leader) b.rounds = 0;
+      return;
+    }
+    if (leader) open_round_body(bp, false);
+    __syncthreads();
+  }
+}
+
+__global__ void begin_flips(FlipBatch views, FlipBatch* batch) {
+  const int64_t i = thread_index();
+  if (i == 0) {
+    memcpy(batch, &views, offsetof(FlipBatch, round));  // the rest belongs to the device
+    *views.counters = TopologyCounters{};
+  }
+  if (i >= views.tris.size) return;
+  constexpr int32_t kForgotten = static_cast<int32_t>(0x80808080);  // below every round
+  views.vote[i] = 0x7f7f7f7f;
+  views.work_stamp[0][i] = views.work_stamp[1][i] = views.voted_stamp[i] = kForgotten;
 }
 
 // Both kinds of round open and test alike; a round the host drives opens afresh.
@@ -233,13 +295,16 @@ void launch_round_candidates(FlipBatch* batch, int64_t blocks, bool host_driven,
 
 }  // namespace
 
-void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream) {
+void size_flip_lists(FlipLists& lists, int64_t m) {
   for (DeviceBuffer<int32_t>* b : {&lists.work[0], &lists.work[1], &lists.work_stamp[0],
                                    &lists.work_stamp[1], &lists.voted, &lists.voted_stamp})
     b->resize(m);
-  if (m == 0) return;
-  for (DeviceBuffer<int32_t>* b : {&lists.work_stamp[0], &lists.work_stamp[1], &lists.voted_stamp})
-    MESHD_CUDA_CHECK(cudaMemsetAsync(b->data(), 0x80, m * sizeof(int32_t), stream));  // < 0
+}
+
+void launch_begin_flips(const FlipBatch& views, FlipBatch* batch, cudaStream_t stream) {
+  begin_flips<<<blocks_for(std::max<int64_t>(views.tris.size, 1)), kBlock, 0, stream>>>(views,
+                                                                                        batch);
+  MESHD_CHECK_LAUNCH("begin_flips");
 }
 
 void launch_flip_candidates(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {

@@ -11,7 +11,9 @@
 //
 // The kernels read their arguments from a FlipBatch in device memory and count the rounds there,
 // so that one cooperative launch runs a repair's rounds until one finds no candidate, with no
-// host round trip in between (launch_flip_loop).
+// host round trip in between (launch_flip_loop). A repair may launch its rounds right behind its
+// orientation check (launch_check_orientation): where that found a triangle turned over (fatal or
+// dropped), the rounds flip nothing, and the host, reading the counters once, drops or rebuilds.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -43,11 +45,13 @@ struct FlipBatch {
   int32_t *work[2], *work_stamp[2], *voted, *voted_stamp;  // FlipLists
   int32_t rounds_per_launch;  // the loop ends after this many rounds (the host relaunches)
   int32_t full;  // the next round tests every edge (the first of a repair, or one the host drives)
+  int32_t tail_items;  // the loop leaves a round with at most this many triangles to one block
   // Written by the kernels only: the host's copy of the fields above ends here.
   int32_t round;       // the current round's number, counted on the device for the engine's life
   int32_t round_full;  // the current round tests every edge
   int32_t rounds;      // rounds a loop on the device has run since its launch
   int32_t again;       // the cooperative loop's decision, for every thread of its grid
+  int32_t tail;        // the loop's rounds have gone to block 0 alone (tail_items)
 };
 
 // Rounds one launch of the loop runs at most, unless told otherwise: a repair that needs more
@@ -55,8 +59,12 @@ struct FlipBatch {
 // at 16M nodes needed more than 200).
 constexpr int32_t kLoopFlipRounds = 200;
 
-// Sizes the lists for #M triangles and forgets every stamp: at the start of a repair.
-void reset_flip_lists(FlipLists& lists, int64_t m, cudaStream_t stream);
+// Sizes the lists for #M triangles (their stamps are reset by launch_begin_flips).
+void size_flip_lists(FlipLists& lists, int64_t m);
+// A repair's start, in one launch rather than a copy and five memsets (a small job's repairs are
+// bound by the host's calls): `batch` takes the host's part of `views` (up to `round`), the
+// counters go to zero, every vote opens and every stamp is forgotten (set below any round).
+void launch_begin_flips(const FlipBatch& views, FlipBatch* batch, cudaStream_t stream);
 
 // The round's first half: opens it (or settles a batch launched one round at a time, see
 // TopologyCounters) and tests its edges, voting and listing. `blocks`: a fixed grid (the kernels
@@ -82,5 +90,10 @@ constexpr int kFlipLoopBlocksPerSm = 1;
 // launch cooperatively (then the caller launches the rounds one by one).
 int64_t flip_loop_blocks(int device);
 void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
+// A cascade's tail, once a round's list holds at most this many triangles (FlipBatch::tail_items),
+// runs in block 0 of the loop alone, two triangles a thread, with block barriers in place of the
+// grid's: at 1M nodes on an H200 it took 16-29% off the graded requests' retriangulations
+// (bench/RESULTS.md, 2026-11-28).
+constexpr int32_t kFlipTailItems = 2 * kBlock;
 
 }  // namespace meshd::gpu

@@ -1,6 +1,7 @@
 #include "kernels/gpu_engine.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -133,14 +134,16 @@ struct GpuEngine::Impl {
   bool completion_failed = false;  // the last completion's checks failed: CGAL instead
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
-  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
+  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next, kept_position;
+  DeviceBuffer<int64_t> totals;  // scan totals read together
+  PinnedValue<std::array<int64_t, 2>> h_totals;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   gpu::FlipLists flip_lists;
   DeviceBuffer<gpu::FlipBatch> flip_batch;  // one
   int64_t flip_loop_blocks = 0;  // the rounds' cooperative loop (0: rounds launched one by one)
+  int32_t flip_tail_items = gpu::kFlipTailItems;
   int32_t flip_rounds_per_launch = gpu::kLoopFlipRounds;
-  PinnedValue<gpu::FlipBatch> h_flip;
   DeviceBuffer<Bar> bars;
   DeviceBuffer<double> length, size, scale, grid_size, scattered;
   ForceSum force_sum = ForceSum::kGather;
@@ -481,63 +484,43 @@ struct GpuEngine::Impl {
   // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
   // dropped slivers in `dropped`.
   int64_t repair(int64_t& dropped) {
-    const int64_t m = static_cast<int64_t>(tris.size());
-    // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped.
-    flags.resize(m);
-    reset_counters();
+    // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped. The
+    // rounds follow at once and flip nothing where the check found either (flip_round.h), so
+    // that the usual repair, which finds neither, reads the device once.
+    flags.resize(static_cast<int64_t>(tris.size()));
+    begin_flips();
     gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
                                   flags.span(), counters.data(), stream);
+    run_flip_rounds(true);
     const gpu::TopologyCounters c = read_counters();
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
-    if (c.dropped > 0) {
-      const int64_t alive = gpu::keep_triangles(flags.span(), tris, nbrs,
-                                                {position, tris_tmp, nbrs_tmp}, temp, stream);
-      flipped_round.resize(alive);
-      MESHD_CUDA_CHECK(
-          cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
-    }
+    if (c.dropped == 0) return settle_flips(c);
+    const int64_t alive =
+        gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream);
+    flipped_round.resize(alive);
+    MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
     return flip_to_delaunay();
   }
 
   // Lawson flips on the device until every edge passes the in-circle test. Returns the flips,
   // or -1 when a rebuild is needed.
   int64_t flip_to_delaunay() {
-    const int64_t mt = static_cast<int64_t>(tris.size());
-    vote.resize(mt);
-    if (mt > 0) MESHD_CUDA_CHECK(cudaMemsetAsync(vote.data(), 0x7f, mt * sizeof(int32_t), stream));
-    partner.resize(mt);
-    undecided.resize(kMaxUndecided);
-    gpu::reset_flip_lists(flip_lists, mt, stream);
-    reset_counters();
-    write_flip_batch();  // after every buffer it points into is sized
-    for (int launches = 0; launches < kMaxFlipLaunches; ++launches) {
-      // Rounds back to back, read once: repairs cascade through a dozen rounds of a few flips
-      // each, and a host round trip per round would cost more than the flips.
-      run_flip_rounds(launches == 0);
-      const gpu::TopologyCounters rc = read_counters();
-      if (rc.undecided > kMaxUndecided) return -1;
-      if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
-      if (rc.undecided > 0) {
-        // The rounds' lists are stale after their last flips: one round again, testing every
-        // edge, with the host deciding what the filter could not.
-        gpu::launch_full_flip_candidates(flip_batch.data(), step_wave, stream);
-        const gpu::TopologyCounters again = read_counters();
-        if (again.undecided > kMaxUndecided) return -1;
-        const int32_t to_flip = again.undecided > 0 ? decide_on_host(again.undecided) : 0;
-        // Exactly co-circular quadruples stay undecided for the filter: once the host says
-        // that none of them flips and nothing else does, the triangulation is Delaunay.
-        if (again.candidates == 0 && to_flip == 0) return again.flips;
-        gpu::launch_flips(flip_batch.data(), step_wave, stream);
-        unsettle();  // the host's flips may make new candidates, however few the round found
-      }
-    }
-    return -1;
+    begin_flips();
+    run_flip_rounds(true);
+    return settle_flips(read_counters());
   }
 
-  // The repair's views for the flip rounds (flip_round.h); its first round tests every edge.
-  void write_flip_batch() {
-    gpu::FlipBatch& b = *h_flip.get();
+  // Sizes and resets what the rounds use; the counters start from zero.
+  void begin_flips() {
+    const int64_t mt = static_cast<int64_t>(tris.size());
+    vote.resize(mt);
+    partner.resize(mt);
+    undecided.resize(kMaxUndecided);
+    gpu::size_flip_lists(flip_lists, mt);
+    counters.resize(1);
+    // The repair's views for the flip rounds (flip_round.h); its first round tests every edge.
+    gpu::FlipBatch b{};
     b.p = p.span();
     b.tris = tris.span();
     b.nbrs = nbrs.span();
@@ -553,11 +536,39 @@ struct GpuEngine::Impl {
     b.voted = flip_lists.voted.data();
     b.voted_stamp = flip_lists.voted_stamp.data();
     b.rounds_per_launch = flip_rounds_per_launch;
+    b.tail_items = flip_tail_items;
     b.full = 1;
-    // The round counters after `full` belong to the device.
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(flip_batch.data(), &b, offsetof(gpu::FlipBatch, round),
-                                     cudaMemcpyHostToDevice, stream));
+    gpu::launch_begin_flips(b, flip_batch.data(), stream);
   }
+
+  // From the counters `rc` read after the repair's first launch: launches again, and lets the
+  // host decide what the filter could not, until the rounds settle. Returns the flips, or -1
+  // when a rebuild is needed.
+  int64_t settle_flips(gpu::TopologyCounters rc) {
+    for (int launches = 1;; ++launches) {
+      if (rc.undecided > kMaxUndecided) return -1;
+      if (rc.undecided == 0 && rc.candidates == 0) return rc.flips;
+      if (rc.undecided > 0) {
+        // The rounds' lists are stale after their last flips: one round again, testing every
+        // edge, with the host deciding what the filter could not.
+        gpu::launch_full_flip_candidates(flip_batch.data(), step_wave, stream);
+        const gpu::TopologyCounters again = read_counters();
+        if (again.undecided > kMaxUndecided) return -1;
+        const int32_t to_flip = again.undecided > 0 ? decide_on_host(again.undecided) : 0;
+        // Exactly co-circular quadruples stay undecided for the filter: once the host says
+        // that none of them flips and nothing else does, the triangulation is Delaunay.
+        if (again.candidates == 0 && to_flip == 0) return again.flips;
+        gpu::launch_flips(flip_batch.data(), step_wave, stream);
+        unsettle();  // the host's flips may make new candidates, however few the round found
+      }
+      if (launches == kMaxFlipLaunches) return -1;
+      // Rounds back to back, read once: repairs cascade through a dozen rounds of a few flips
+      // each, and a host round trip per round would cost more than the flips.
+      run_flip_rounds(false);
+      rc = read_counters();
+    }
+  }
+
   // Rounds until one finds no candidate (the device's loop), or kRoundsPerBatch rounds launched
   // one by one, of which those after such a round return at once. A repair's first round tests
   // every edge: it gets a full grid of its own, the loop's few blocks the cascade that follows.
@@ -611,7 +622,16 @@ struct GpuEngine::Impl {
     position.resize(m);
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
     gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
-    const int64_t nb = gpu::scan_total(position.data(), count.data(), m, stream);
+    totals.resize(2);
+    gpu::launch_scan_total(position.data(), count.data(), m, totals.data(), stream);
+    // The kept triangles, for the stats, read with the bars' count: one wait instead of two.
+    kept_position.resize(m);
+    gpu::exclusive_scan(keep.data(), kept_position.data(), m, temp, stream);
+    gpu::launch_scan_total(kept_position.data(), keep.data(), m, totals.data() + 1, stream);
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get(), totals.data(), 2 * sizeof(int64_t),
+                                     cudaMemcpyDeviceToHost, stream));
+    sync();
+    const int64_t nb = (*h_totals.get())[0];
     bars.resize(nb);
     scale_lagged_ok = false;
     gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
@@ -632,10 +652,12 @@ struct GpuEngine::Impl {
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
-    // Kept triangles, for the stats: position is free again once the bars are written.
-    gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
+    // The device idle at the end, as when the kept triangles' count was read here: with the CSR's
+    // sort still running as the steps begin, memcheck reports garbage reads inside the step
+    // graph, unexplained (bench/RESULTS.md, 2026-11-28). One wait per retriangulation.
+    sync();
     TopologyStats stats;
-    stats.triangles = gpu::scan_total(position.data(), keep.data(), m, stream);
+    stats.triangles = (*h_totals.get())[1];
     stats.bars = nb;
     return stats;
   }
@@ -940,6 +962,7 @@ QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {
 
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
 void GpuEngine::set_flip_rounds_per_launch(int rounds) { impl_->flip_rounds_per_launch = rounds; }
+void GpuEngine::set_flip_tail_items(int items) { impl_->flip_tail_items = items; }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 
 void GpuEngine::warm_up() {

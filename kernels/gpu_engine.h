@@ -76,6 +76,9 @@ class GpuEngine final : public Engine {
   // For tests: the flip loop's rounds per launch (gpu::kLoopFlipRounds by default), after
   // which a repair that still finds candidates launches it again.
   void set_flip_rounds_per_launch(int rounds);
+  // For tests: the longest work list of a round that the flip loop leaves to one block
+  // (gpu::FlipBatch::tail_items; 0: never).
+  void set_flip_tail_items(int items);
 
   // The host's threads for its share of the finish (kept by reference; null, the default: the
   // caller's thread alone).

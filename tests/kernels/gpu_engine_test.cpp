@@ -282,15 +282,12 @@ TEST_P(GpuAgreement, RepairByFlipsGivesADelaunayTriangulation) {
   EXPECT_GT(total_flips, 0) << "the test never exercised a flip";
 }
 
-// A repair whose rounds outlast one launch of the flip loop launches it again: with one round a
-// launch, every repair that flips needs several launches, and none may fall back to a rebuild.
-// The result is the triangulation CGAL builds from scratch, up to dropped boundary slivers.
-TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipLoopGoOn) {
-  SKIP_WITHOUT_GPU();
+// Thirty repairs of G2's moving nodes on an engine set up by the caller: none falls back to a
+// rebuild, some flip, and the result is the triangulation CGAL builds from scratch, up to dropped
+// boundary slivers.
+void expect_repairs_like_cgal(GpuEngine& gpu) {
   const CompiledProblem c = compiled("G2", 3000);
   ThreadPool pool;
-  GpuEngine gpu(0);
-  gpu.set_flip_rounds_per_launch(1);
   gpu.initialize(c);
   gpu.retriangulate(true);
   int64_t flips = 0;
@@ -303,6 +300,29 @@ TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipLoopGoOn) {
   EXPECT_GT(flips, 0) << "the test never exercised a flip";
   read_beside_cgal(c, gpu, pool, "after the repairs");
 }
+
+// A repair whose rounds outlast one launch of the flip loop launches it again: with one round a
+// launch, every repair that flips needs several launches.
+TEST(GpuRepair, RoundsThatOutlastOneLaunchOfTheFlipLoopGoOn) {
+  SKIP_WITHOUT_GPU();
+  GpuEngine gpu(0);
+  gpu.set_flip_rounds_per_launch(1);
+  expect_repairs_like_cgal(gpu);
+}
+
+// The flip loop hands a round whose list is short to one block (flip_round.h), and gives a tail
+// that grows back to the grid through a new launch: no round, few rounds or every round after a
+// repair's first in the one block.
+class GpuFlipTail : public ::testing::TestWithParam<int> {};
+
+TEST_P(GpuFlipTail, RepairsEndDelaunayWhateverTheTailTakes) {
+  SKIP_WITHOUT_GPU();
+  GpuEngine gpu(0);
+  gpu.set_flip_tail_items(GetParam());
+  expect_repairs_like_cgal(gpu);
+}
+
+INSTANTIATE_TEST_SUITE_P(TailItems, GpuFlipTail, ::testing::Values(0, 2, 1 << 30));
 
 // A multilevel step: a coarse mesh relaxed at 2 h0 and split in four (refine.h). The device
 // refines it to the host's points, bit for bit and in the same order, and flips its split
