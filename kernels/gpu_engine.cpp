@@ -134,8 +134,8 @@ struct GpuEngine::Impl {
   bool completion_failed = false;  // the last completion's checks failed: CGAL instead
   DeviceBuffer<Tri> tris, nbrs, tris_tmp, nbrs_tmp;
   DeviceBuffer<uint8_t> keep, flags;
-  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next, kept_position;
-  DeviceBuffer<int64_t> totals;  // scan totals read together
+  DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
+  DeviceBuffer<int64_t> totals;  // scan totals, read through pinned memory at the next wait
   PinnedValue<std::array<int64_t, 2>> h_totals;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
@@ -458,6 +458,16 @@ struct GpuEngine::Impl {
     return c.fatal == 0 && m == 2 * n - 2 - c.candidates;
   }
 
+  // The total of a scan (positions `at`, scan.h) into h_totals[slot], once the stream is next
+  // waited for: a copy to pinned memory, where scan_total's two blocking copies would each wait.
+  template <typename Flag>
+  void read_scan_total(const DeviceBuffer<int32_t>& at, const DeviceBuffer<Flag>& flag, int slot) {
+    gpu::launch_scan_total(at.data(), flag.data(), static_cast<int64_t>(flag.size()),
+                           totals.data() + slot, stream);
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get()->data() + slot, totals.data() + slot,
+                                     sizeof(int64_t), cudaMemcpyDeviceToHost, stream));
+  }
+
   void reset_counters() {
     counters.resize(1);
     MESHD_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, sizeof(gpu::TopologyCounters), stream));
@@ -623,13 +633,7 @@ struct GpuEngine::Impl {
     gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
     gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
     totals.resize(2);
-    gpu::launch_scan_total(position.data(), count.data(), m, totals.data(), stream);
-    // The kept triangles, for the stats, read with the bars' count: one wait instead of two.
-    kept_position.resize(m);
-    gpu::exclusive_scan(keep.data(), kept_position.data(), m, temp, stream);
-    gpu::launch_scan_total(kept_position.data(), keep.data(), m, totals.data() + 1, stream);
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get(), totals.data(), 2 * sizeof(int64_t),
-                                     cudaMemcpyDeviceToHost, stream));
+    read_scan_total(position, count, 0);
     sync();
     const int64_t nb = (*h_totals.get())[0];
     bars.resize(nb);
@@ -652,9 +656,11 @@ struct GpuEngine::Impl {
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
-    // The device idle at the end, as when the kept triangles' count was read here: with the CSR's
-    // sort still running as the steps begin, memcheck reports garbage reads inside the step
-    // graph, unexplained (bench/RESULTS.md, 2026-11-28). One wait per retriangulation.
+    // Kept triangles, for the stats: position is free again once the bars are written.
+    gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
+    read_scan_total(position, keep, 1);
+    // The device idle at the end: with the CSR's sort still running as the steps begin, memcheck
+    // reports garbage reads inside the step graph, unexplained (bench/RESULTS.md, 2026-11-28).
     sync();
     TopologyStats stats;
     stats.triangles = (*h_totals.get())[1];

@@ -74,6 +74,12 @@ __global__ void write_scan_total(const int32_t* position, const Flag* flag, int6
                                  int64_t* total) {
   *total = n == 0 ? 0 : int64_t{position[n - 1]} + flag[n - 1];
 }
+template <typename Flag>
+void launch_write_scan_total(const int32_t* position, const Flag* flag, int64_t n, int64_t* total,
+                             cudaStream_t stream) {
+  write_scan_total<<<1, 1, 0, stream>>>(position, flag, n, total);
+  MESHD_CHECK_LAUNCH("write_scan_total");
+}
 
 template <typename Key>
 void sort_key_pairs(const Key* keys_in, Key* keys_out, const int32_t* values_in,
@@ -98,13 +104,11 @@ int64_t scan_total(const int32_t* position, const int32_t* flag, int64_t n, cuda
 
 void launch_scan_total(const int32_t* position, const uint8_t* flag, int64_t n, int64_t* total,
                        cudaStream_t stream) {
-  write_scan_total<<<1, 1, 0, stream>>>(position, flag, n, total);
-  MESHD_CHECK_LAUNCH("write_scan_total");
+  launch_write_scan_total(position, flag, n, total, stream);
 }
 void launch_scan_total(const int32_t* position, const int32_t* flag, int64_t n, int64_t* total,
                        cudaStream_t stream) {
-  write_scan_total<<<1, 1, 0, stream>>>(position, flag, n, total);
-  MESHD_CHECK_LAUNCH("write_scan_total");
+  launch_write_scan_total(position, flag, n, total, stream);
 }
 
 void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,
