@@ -33,6 +33,7 @@ struct Options {
   std::string force_sum = "gather";
   bool exact_scale = false;
   bool step_graph = true;
+  bool bars_graph = true;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -44,8 +45,8 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
-               "                 [--exact-scale] [--no-step-graph] [--nodes N] [--repeat R]\n"
-               "                 [--phases]\n"
+               "                 [--exact-scale] [--no-step-graph] [--no-bars-graph] [--nodes N]\n"
+               "                 [--repeat R] [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
@@ -53,6 +54,8 @@ struct Options {
                "              it takes the L0 scale from the step before)\n"
                "  --no-step-graph the GPU engine launches a step's kernels one by one and waits\n"
                "              for each step (by default a CUDA graph runs up to 32 steps)\n"
+               "  --no-bars-graph the GPU engine launches a retriangulation's filter, bars and\n"
+               "              CSR one by one (by default, up to 2^18 triangles, one CUDA graph)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  --phases    after the table, one more with the seconds of each phase\n"
@@ -79,6 +82,8 @@ Options parse(int argc, char** argv) {
       o.exact_scale = true;
     else if (a == "--no-step-graph")
       o.step_graph = false;
+    else if (a == "--no-bars-graph")
+      o.bars_graph = false;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -115,6 +120,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
     if (o.force_sum == "atomic") gpu->set_force_sum(meshd::GpuEngine::ForceSum::kAtomic);
     gpu->set_lagged_scale(!o.exact_scale);
     if (!o.step_graph) gpu->set_step_graph(false);
+    if (!o.bars_graph) gpu->set_replayed_triangles(0);
     gpu->set_host_pool(&pool);
     gpu->warm_up();
     return gpu;
@@ -150,7 +156,8 @@ int main(int argc, char** argv) {
       "| request | backend | nodes | triangles | levels | iterations | equiv. iter "
       "| retri (repair/full) | fallbacks / refills | flips | t_tri s | t_forces s | us/iter "
       "| GB/s (model) | t_cleanup s | t_total s | q_min | q_mean | min angle | trapped |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   std::vector<std::string> phase_rows;
   for (const std::string& path : opt.requests) {

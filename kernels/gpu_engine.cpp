@@ -27,6 +27,7 @@
 #include "kernels/pinned_value.h"
 #include "kernels/point_insertion.h"
 #include "kernels/refine_level.h"
+#include "kernels/replay_graph.h"
 #include "kernels/scan.h"
 
 namespace meshd {
@@ -47,6 +48,8 @@ constexpr int kRoundsPerBatch = 8;
 // A repair that needs more batches of rounds than this (kRoundsPerBatch rounds each, or in the
 // loop up to flip_rounds_per_launch) is pathological: rebuild instead.
 constexpr int kMaxFlipLaunches = 25;
+// Triangulations up to this size get their bars through one graph (filter_and_bars).
+constexpr int64_t kReplayedTriangles = int64_t{1} << 18;
 
 }  // namespace
 
@@ -137,6 +140,11 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int64_t> totals;  // scan totals, read through pinned memory at the next wait
   PinnedValue<std::array<int64_t, 2>> h_totals;
+  gpu::ReplayGraph bars_graph;  // filter_and_bars
+  int64_t replayed_triangles = kReplayedTriangles;
+  // Changes with every argument that bars_graph's launches take by value: a new problem (or
+  // level) and a new node set.
+  uint64_t epoch = 0;
   DeviceBuffer<int32_t> undecided, decided;  // in-circle tests for the host, and its verdicts
   DeviceBuffer<gpu::InCircleTest> in_circle_tests;  // the undecided tests' points
   gpu::FlipLists flip_lists;
@@ -175,6 +183,7 @@ struct GpuEngine::Impl {
 
   void load_problem(const CompiledProblem& prob) {
     problem = &prob;
+    ++epoch;
     copy_tidy = false;
     geometry_code.upload(prob.geometry.code.data(), prob.geometry.code.size(), stream);
     geometry_params.upload(prob.geometry.params.data(), prob.geometry.params.size(), stream);
@@ -199,6 +208,7 @@ struct GpuEngine::Impl {
 
   // After the node set changed: no momentum, no triangulation, drift "infinite".
   void reset_node_state() {
+    ++epoch;
     p_next.resize(n);
     p_old.resize(n);
     velocity.resize(n);
@@ -458,16 +468,6 @@ struct GpuEngine::Impl {
     return c.fatal == 0 && m == 2 * n - 2 - c.candidates;
   }
 
-  // The total of a scan (positions `at`, scan.h) into h_totals[slot], once the stream is next
-  // waited for: a copy to pinned memory, where scan_total's two blocking copies would each wait.
-  template <typename Flag>
-  void read_scan_total(const DeviceBuffer<int32_t>& at, const DeviceBuffer<Flag>& flag, int slot) {
-    gpu::launch_scan_total(at.data(), flag.data(), static_cast<int64_t>(flag.size()),
-                           totals.data() + slot, stream);
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get()->data() + slot, totals.data() + slot,
-                                     sizeof(int64_t), cudaMemcpyDeviceToHost, stream));
-  }
-
   void reset_counters() {
     counters.resize(1);
     MESHD_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, sizeof(gpu::TopologyCounters), stream));
@@ -622,50 +622,119 @@ struct GpuEngine::Impl {
     return static_cast<int32_t>(flip_ids.size());
   }
 
+  // The kept triangles, their bars and the bars' CSR. A triangulation of up to
+  // replayed_triangles gives its bars room for three a triangle, so that nothing waits for their
+  // count, and runs as one graph (bars_graph); a larger one waits for the count, so that its
+  // sort covers the bars alone, since its launches cost little beside their work.
   TopologyStats filter_and_bars() {
+    size_filter();
+    if (static_cast<int64_t>(tris.size()) <= replayed_triangles) {
+      size_bars(3 * static_cast<int64_t>(tris.size()));
+      bars_graph.run([&] { return bars_key(); },
+                     [&](cudaStream_t) {
+                       filter();
+                       bars_and_csr();
+                     },
+                     stream);
+    } else {
+      filter();
+      read_totals(1);
+      sync();
+      size_bars((*h_totals.get())[0]);
+      bars_and_csr();
+    }
+    // The device idle at the end: with the CSR's sort still running as the steps begin, memcheck
+    // reports garbage reads inside the step graph, unexplained (bench/RESULTS.md, 2026-11-28).
+    sync();
+    return bars_sizes();
+  }
+  // The counts that bars_and_csr sent, once the stream was waited for; the bars' room trimmed to
+  // their count (the same memory).
+  TopologyStats bars_sizes() {
+    TopologyStats stats;
+    stats.bars = (*h_totals.get())[0];
+    stats.triangles = (*h_totals.get())[1];
+    size_bars(stats.bars);
+    return stats;
+  }
+  void size_filter() {
     const int64_t m = static_cast<int64_t>(tris.size());
-    const double geps = problem->params.geps * problem->h0;
     keep.resize(m);
-    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
-                                geps, keep.span(), stream);
     count.resize(m);
     position.resize(m);
-    gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
-    gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
     totals.resize(2);
-    read_scan_total(position, count, 0);
-    sync();
-    const int64_t nb = (*h_totals.get())[0];
-    bars.resize(nb);
-    scale_lagged_ok = false;
-    gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
-                           stream);
-    // CSR of bar ends by node; the stable sort keeps each node's bars in bar order.
-    key.resize(2 * nb);
-    key_sorted.resize(2 * nb);
-    value.resize(2 * nb);
-    csr_entry.resize(2 * nb);
-    csr_other.resize(2 * nb);
     degree.resize(n + 1);
     csr_offset.resize(n + 1);
+    scale_lagged_ok = false;
+  }
+  void size_bars(int64_t room) {
+    bars.resize(room);
+    for (DeviceBuffer<int32_t>* end : {&key, &key_sorted, &value, &csr_entry, &csr_other})
+      end->resize(2 * room);
+  }
+  // keep, and the bars' count in totals[0].
+  void filter() {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
+                                problem->params.geps * problem->h0, keep.span(), stream);
+    gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
+    gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
+    gpu::launch_scan_total(position.data(), count.data(), m, totals.data(), stream);
+  }
+  // The bars into their room (size_bars), the CSR of their ends by node, and the kept triangles'
+  // count in totals[1]; both totals reach h_totals at the next wait.
+  void bars_and_csr() {
+    const int64_t m = static_cast<int64_t>(tris.size());
+    const int64_t room = static_cast<int64_t>(bars.size());
+    gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
+                           stream);
+    // The stable sort keeps each node's bars in bar order; the room's unused ends sort last.
     MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
-    gpu::launch_bar_ends(bars.span(), key.span(), value.span(), degree.span(), stream);
-    gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * nb,
-                    gpu::bits_for(n), temp, stream);
-    gpu::launch_csr_other_ends(bars.span(), csr_entry.span(), csr_other.span(), stream);
+    gpu::launch_bar_ends(bars.span(), totals.data(), static_cast<int32_t>(n), key.span(),
+                         value.span(), degree.span(), stream);
+    gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * room,
+                    gpu::bits_for(n + 1), temp, stream);
+    gpu::launch_csr_other_ends(bars.span(), csr_entry.span(), totals.data(), csr_other.span(),
+                               stream);
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
     // Kept triangles, for the stats: position is free again once the bars are written.
     gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
-    read_scan_total(position, keep, 1);
-    // The device idle at the end: with the CSR's sort still running as the steps begin, memcheck
-    // reports garbage reads inside the step graph, unexplained (bench/RESULTS.md, 2026-11-28).
-    sync();
-    TopologyStats stats;
-    stats.triangles = (*h_totals.get())[1];
-    stats.bars = nb;
-    return stats;
+    gpu::launch_scan_total(position.data(), keep.data(), m, totals.data() + 1, stream);
+    read_totals(2);
+  }
+  // The first `slots` totals into h_totals, once the stream is next waited for.
+  void read_totals(int slots) {
+    MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get()->data(), totals.data(), slots * sizeof(int64_t),
+                                     cudaMemcpyDeviceToHost, stream));
+  }
+  // What bars_graph's launches depend on: the buffers' places and sizes, and the epoch for the
+  // arguments passed by value (the programs, the clearance rule, geps).
+  gpu::ReplayGraph::Key bars_key() const {
+    const auto at = [](const void* ptr) { return reinterpret_cast<uint64_t>(ptr); };
+    return {epoch,
+            static_cast<uint64_t>(n),
+            tris.size(),
+            bars.size(),
+            at(p.data()),
+            at(p_old.data()),
+            at(clearance.data()),
+            at(tris.data()),
+            at(nbrs.data()),
+            at(keep.data()),
+            at(count.data()),
+            at(position.data()),
+            at(totals.data()),
+            at(bars.data()),
+            at(key.data()),
+            at(key_sorted.data()),
+            at(value.data()),
+            at(csr_entry.data()),
+            at(csr_other.data()),
+            at(degree.data()),
+            at(csr_offset.data()),
+            at(temp.data())};
   }
 };
 
@@ -969,6 +1038,8 @@ QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
 void GpuEngine::set_flip_rounds_per_launch(int rounds) { impl_->flip_rounds_per_launch = rounds; }
 void GpuEngine::set_flip_tail_items(int items) { impl_->flip_tail_items = items; }
+void GpuEngine::set_replayed_triangles(int64_t triangles) { impl_->replayed_triangles = triangles; }
+int64_t GpuEngine::bars_replays() const { return impl_->bars_graph.replays(); }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 
 void GpuEngine::warm_up() {

@@ -79,6 +79,10 @@ class GpuEngine final : public Engine {
   // For tests: the longest work list of a round that the flip loop leaves to one block
   // (gpu::FlipBatch::tail_items; 0: never).
   void set_flip_tail_items(int items);
+  // For tests: the largest triangulation whose bars and CSR run as one replayed graph
+  // (replay_graph.h; 2^18 triangles by default, 0: none), and how many such runs there were.
+  void set_replayed_triangles(int64_t triangles);
+  int64_t bars_replays() const;
 
   // The host's threads for its share of the finish (kept by reference; null, the default: the
   // caller's thread alone).

@@ -233,11 +233,15 @@ void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
                        DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
                        DeviceSpan<Bar> bars, cudaStream_t stream);
 // CSR of bars by node: key[2b + e] = bars[b] end e, value = 2b + e; degree counts by node.
-void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
-                     DeviceSpan<int32_t> degree, cudaStream_t stream);
-// other[k] = the far end of CSR entry k (bar * 2 + end): the step then gathers a neighbour's
-// position with one dependent load instead of two.
+// `bars` may run past the *bar_count written (room sized before the count is known): the rest
+// get key `sentinel`, above every node, and sort after them.
+void launch_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
+                     DeviceSpan<int32_t> key, DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree,
+                     cudaStream_t stream);
+// other[k] = the far end of CSR entry k (bar * 2 + end), for the 2 *bar_count entries: the step
+// then gathers a neighbour's position with one dependent load instead of two.
 void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                           DeviceSpan<int32_t> other, cudaStream_t stream);
+                           const int64_t* bar_count, DeviceSpan<int32_t> other,
+                           cudaStream_t stream);
 
 }  // namespace meshd::gpu

@@ -3,11 +3,11 @@
 // themselves: flip_round.h).
 #include <climits>
 
+#include "core/delaunay/filtered_predicates.cuh"
 #include "core/distmesh/boundary_sliver.cuh"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
-#include "core/delaunay/filtered_predicates.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
@@ -148,23 +148,28 @@ __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbr
       bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
 }
 
-__global__ void bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key,
-                         DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree) {
+__global__ void bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
+                         DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
+                         DeviceSpan<int32_t> degree) {
   const int64_t b = thread_index();
   if (b >= bars.size) return;
+  value[2 * b] = static_cast<int32_t>(2 * b);
+  value[2 * b + 1] = static_cast<int32_t>(2 * b + 1);
+  if (b >= *bar_count) {
+    key[2 * b] = key[2 * b + 1] = sentinel;
+    return;
+  }
   const Bar bar = bars[b];
   key[2 * b] = bar.a;
   key[2 * b + 1] = bar.b;
-  value[2 * b] = static_cast<int32_t>(2 * b);
-  value[2 * b + 1] = static_cast<int32_t>(2 * b + 1);
   atomicAdd(&degree[bar.a], 1);
   atomicAdd(&degree[bar.b], 1);
 }
 
 __global__ void csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                               DeviceSpan<int32_t> other) {
+                               const int64_t* bar_count, DeviceSpan<int32_t> other) {
   const int64_t k = thread_index();
-  if (k >= csr_entry.size) return;
+  if (k >= csr_entry.size || k >= 2 * *bar_count) return;
   const int32_t e = csr_entry[k];
   other[k] = (e & 1) ? bars[e >> 1].a : bars[e >> 1].b;
 }
@@ -263,17 +268,21 @@ void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
   MESHD_CHECK_LAUNCH("write_bars");
 }
 
-void launch_bar_ends(DeviceSpan<const Bar> bars, DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
-                     DeviceSpan<int32_t> degree, cudaStream_t stream) {
+void launch_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
+                     DeviceSpan<int32_t> key, DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree,
+                     cudaStream_t stream) {
   if (bars.size == 0) return;
-  bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, key, value, degree);
+  bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, bar_count, sentinel, key, value,
+                                                         degree);
   MESHD_CHECK_LAUNCH("bar_ends");
 }
 
 void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                           DeviceSpan<int32_t> other, cudaStream_t stream) {
+                           const int64_t* bar_count, DeviceSpan<int32_t> other,
+                           cudaStream_t stream) {
   if (csr_entry.size == 0) return;
-  csr_other_ends<<<blocks_for(csr_entry.size), kBlock, 0, stream>>>(bars, csr_entry, other);
+  csr_other_ends<<<blocks_for(csr_entry.size), kBlock, 0, stream>>>(bars, csr_entry, bar_count,
+                                                                    other);
   MESHD_CHECK_LAUNCH("csr_other_ends");
 }
 

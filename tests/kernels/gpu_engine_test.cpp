@@ -640,6 +640,24 @@ TEST(GpuEngine, SameJobTwiceGivesTheSameBitsAndAllocatesNothingNew) {
   EXPECT_EQ(first.mesh.triangles, second.mesh.triangles);
 }
 
+// Small triangulations get their bars and CSR from a replayed graph (filter_and_bars), with room
+// for three bars a triangle; the same job with every launch direct, and the bars sized first,
+// gives the same bits.
+TEST(GpuEngine, BarsFromTheReplayedGraphAreTheDirectLaunchesOwn) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled("G5", 5000);
+  GpuEngine replayed(0), direct(0);
+  direct.set_replayed_triangles(0);
+  const MeshResult a = generate_mesh(c, replayed, nullptr, nullptr);
+  const MeshResult b = generate_mesh(c, direct, nullptr, nullptr);
+  EXPECT_GT(replayed.bars_replays(), 0);
+  EXPECT_EQ(direct.bars_replays(), 0);
+  ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
+  EXPECT_TRUE(std::equal(a.mesh.points.begin(), a.mesh.points.end(), b.mesh.points.begin()));
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+}
+
 TEST(GpuEngine, MissingDeviceIsUnavailable) {
   SKIP_WITHOUT_GPU();
   try {
