@@ -56,6 +56,18 @@ class DeviceBuffer {
     size_ = n;
   }
 
+  // Grows the allocation to hold n, keeping the size and the contents.
+  void reserve(size_t n, cudaStream_t stream) {
+    if (n <= capacity_) return;
+    DeviceBuffer grown;
+    grown.resize(n);
+    grown.size_ = size_;
+    if (size_ > 0)
+      MESHD_CUDA_CHECK(
+          cudaMemcpyAsync(grown.ptr_, ptr_, size_ * sizeof(T), cudaMemcpyDeviceToDevice, stream));
+    *this = std::move(grown);  // the old allocation is freed once the copy is done (cudaFree waits)
+  }
+
   T* data() const { return ptr_; }
   size_t size() const { return size_; }
   DeviceSpan<T> span() const { return {ptr_, static_cast<int64_t>(size_)}; }

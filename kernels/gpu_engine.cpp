@@ -140,6 +140,7 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int64_t> totals;  // scan totals, read through pinned memory at the next wait
   PinnedValue<std::array<int64_t, 2>> h_totals;
+  PinnedValue<int64_t> h_live;  // filter_and_bars' triangles, for the device's totals[2]
   gpu::ReplayGraph bars_graph;  // filter_and_bars
   int64_t replayed_triangles = kReplayedTriangles;
   // Changes with every argument that bars_graph's launches take by value: a new problem (or
@@ -304,7 +305,7 @@ struct GpuEngine::Impl {
   bool complete_from_domain_triangles() {
     keep.resize(tris.size());  // scratch: the next triangulation sets it again
     gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
-                                problem->params.geps * problem->h0, keep.span(), stream);
+                                problem->params.geps * problem->h0, keep.span(), nullptr, stream);
     gpu::keep_triangles(keep.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream);
     return gpu::complete_gaps(p.span(), nfix, tris, nbrs, gaps, temp, stream);
   }
@@ -623,30 +624,45 @@ struct GpuEngine::Impl {
   }
 
   // The kept triangles, their bars and the bars' CSR. A triangulation of up to
-  // replayed_triangles gives its bars room for three a triangle, so that nothing waits for their
-  // count, and runs as one graph (bars_graph); a larger one waits for the count, so that its
-  // sort covers the bars alone, since its launches cost little beside their work.
+  // replayed_triangles runs them as one graph (bars_graph) over room for a few more triangles
+  // (padded_rows), with room for three bars a triangle, so that nothing waits for their count
+  // and the graph serves the repairs that follow, each dropping a few triangles. A larger one
+  // waits for the count, so that its sort covers the bars alone, since its launches cost little
+  // beside their work.
   TopologyStats filter_and_bars() {
-    size_filter();
-    if (static_cast<int64_t>(tris.size()) <= replayed_triangles) {
-      size_bars(3 * static_cast<int64_t>(tris.size()));
-      bars_graph.run([&] { return bars_key(); },
+    const int64_t m = static_cast<int64_t>(tris.size());
+    const bool replayed = m <= replayed_triangles;
+    const int64_t rows = replayed ? padded_rows(m) : m;
+    tris.reserve(rows, stream);
+    nbrs.reserve(rows, stream);
+    size_filter(rows);
+    *h_live.get() = m;
+    if (replayed) {
+      size_bars(3 * rows);
+      bars_graph.run([&] { return bars_key(rows); },
                      [&](cudaStream_t) {
-                       filter();
-                       bars_and_csr();
+                       filter(rows);
+                       bars_and_csr(rows);
                      },
                      stream);
     } else {
-      filter();
+      filter(rows);
       read_totals(1);
       sync();
       size_bars((*h_totals.get())[0]);
-      bars_and_csr();
+      bars_and_csr(rows);
     }
     // The device idle at the end: with the CSR's sort still running as the steps begin, memcheck
     // reports garbage reads inside the step graph, unexplained (bench/RESULTS.md, 2026-11-28).
     sync();
+    keep.resize(m);  // the same memory
     return bars_sizes();
+  }
+  // m rounded up by at most a sixteenth (a multiple of 256 at least).
+  static int64_t padded_rows(int64_t m) {
+    int64_t step = 256;
+    while (step * 32 <= m) step *= 2;
+    return (m + step - 1) / step * step;
   }
   // The counts that bars_and_csr sent, once the stream was waited for; the bars' room trimmed to
   // their count (the same memory).
@@ -657,12 +673,11 @@ struct GpuEngine::Impl {
     size_bars(stats.bars);
     return stats;
   }
-  void size_filter() {
-    const int64_t m = static_cast<int64_t>(tris.size());
-    keep.resize(m);
-    count.resize(m);
-    position.resize(m);
-    totals.resize(2);
+  void size_filter(int64_t rows) {
+    keep.resize(rows);
+    count.resize(rows);
+    position.resize(rows);
+    totals.resize(3);
     degree.resize(n + 1);
     csr_offset.resize(n + 1);
     scale_lagged_ok = false;
@@ -672,22 +687,29 @@ struct GpuEngine::Impl {
     for (DeviceBuffer<int32_t>* end : {&key, &key_sorted, &value, &csr_entry, &csr_other})
       end->resize(2 * room);
   }
+  // The triangulation's `rows` (reserved; those past tris.size() are room, told apart on the
+  // device by totals[2], the live count copied from h_live).
+  gpu::DeviceSpan<const Tri> rows_of(const DeviceBuffer<Tri>& t, int64_t rows) const {
+    return {t.data(), rows};
+  }
   // keep, and the bars' count in totals[0].
-  void filter() {
-    const int64_t m = static_cast<int64_t>(tris.size());
-    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
-                                problem->params.geps * problem->h0, keep.span(), stream);
-    gpu::launch_count_bars(nbrs.span(), keep.span(), count.span(), stream);
-    gpu::exclusive_scan(count.data(), position.data(), m, temp, stream);
-    gpu::launch_scan_total(position.data(), count.data(), m, totals.data(), stream);
+  void filter(int64_t rows) {
+    int64_t* live = totals.data() + 2;
+    MESHD_CUDA_CHECK(
+        cudaMemcpyAsync(live, h_live.get(), sizeof(int64_t), cudaMemcpyHostToDevice, stream));
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, rows_of(tris, rows), fd,
+                                nested_index, problem->params.geps * problem->h0, keep.span(), live,
+                                stream);
+    gpu::launch_count_bars(rows_of(nbrs, rows), keep.span(), count.span(), live, stream);
+    gpu::exclusive_scan(count.data(), position.data(), rows, temp, stream);
+    gpu::launch_scan_total(position.data(), count.data(), rows, totals.data(), stream);
   }
   // The bars into their room (size_bars), the CSR of their ends by node, and the kept triangles'
   // count in totals[1]; both totals reach h_totals at the next wait.
-  void bars_and_csr() {
-    const int64_t m = static_cast<int64_t>(tris.size());
+  void bars_and_csr(int64_t rows) {
     const int64_t room = static_cast<int64_t>(bars.size());
-    gpu::launch_write_bars(tris.span(), nbrs.span(), keep.span(), position.span(), bars.span(),
-                           stream);
+    gpu::launch_write_bars(rows_of(tris, rows), rows_of(nbrs, rows), keep.span(), position.span(),
+                           bars.span(), totals.data() + 2, stream);
     // The stable sort keeps each node's bars in bar order; the room's unused ends sort last.
     MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
     gpu::launch_bar_ends(bars.span(), totals.data(), static_cast<int32_t>(n), key.span(),
@@ -700,8 +722,8 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
     // Kept triangles, for the stats: position is free again once the bars are written.
-    gpu::exclusive_scan(keep.data(), position.data(), m, temp, stream);
-    gpu::launch_scan_total(position.data(), keep.data(), m, totals.data() + 1, stream);
+    gpu::exclusive_scan(keep.data(), position.data(), rows, temp, stream);
+    gpu::launch_scan_total(position.data(), keep.data(), rows, totals.data() + 1, stream);
     read_totals(2);
   }
   // The first `slots` totals into h_totals, once the stream is next waited for.
@@ -711,11 +733,11 @@ struct GpuEngine::Impl {
   }
   // What bars_graph's launches depend on: the buffers' places and sizes, and the epoch for the
   // arguments passed by value (the programs, the clearance rule, geps).
-  gpu::ReplayGraph::Key bars_key() const {
+  gpu::ReplayGraph::Key bars_key(int64_t rows) const {
     const auto at = [](const void* ptr) { return reinterpret_cast<uint64_t>(ptr); };
     return {epoch,
             static_cast<uint64_t>(n),
-            tris.size(),
+            static_cast<uint64_t>(rows),
             bars.size(),
             at(p.data()),
             at(p_old.data()),

@@ -220,18 +220,21 @@ void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
 void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                   DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
                                   int64_t nfix, DeviceSpan<uint8_t> node_keep, cudaStream_t stream);
-// keep[t] = fd(centroid) < -geps, decided by the nodes' clearances where they can.
+// keep[t] = fd(centroid) < -geps, decided by the nodes' clearances where they can. The three
+// below take `live` (device memory; null: every row): rows from *live on are room past the
+// triangulation, with keep and count 0 and no bars, so that a graph sized for the room serves a
+// triangulation that lost a few triangles.
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                             const ClearanceRule& clear, DeviceSpan<const Tri> tris, ProgramView fd,
                             bool nested_index, double geps, DeviceSpan<uint8_t> keep,
-                            cudaStream_t stream);
+                            const int64_t* live, cudaStream_t stream);
 // count[t] = number of bars triangle t contributes (edges to a higher or no neighbour with
 // either side kept); then, with position = exclusive scan of count, writes them.
 void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
-                       DeviceSpan<int32_t> count, cudaStream_t stream);
+                       DeviceSpan<int32_t> count, const int64_t* live, cudaStream_t stream);
 void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
                        DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
-                       DeviceSpan<Bar> bars, cudaStream_t stream);
+                       DeviceSpan<Bar> bars, const int64_t* live, cudaStream_t stream);
 // CSR of bars by node: key[2b + e] = bars[b] end e, value = 2b + e; degree counts by node.
 // `bars` may run past the *bar_count written (room sized before the count is known): the rest
 // get key `sentinel`, above every node, and sort after them.

@@ -97,11 +97,21 @@ __global__ void hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
   }
 }
 
+// Rows past *live (null: none) are room for a triangulation that may grow: no triangle there.
+__device__ inline bool past_live(int64_t t, const int64_t* live) {
+  return live != nullptr && t >= *live;
+}
+
 __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                                 ClearanceRule clear, DeviceSpan<const Tri> tris, ProgramView fd,
-                                bool nested_index, double geps, DeviceSpan<uint8_t> keep) {
+                                bool nested_index, double geps, DeviceSpan<uint8_t> keep,
+                                const int64_t* live) {
   const int64_t t = thread_index();
   if (t >= tris.size) return;
+  if (past_live(t, live)) {
+    keep[t] = 0;
+    return;
+  }
   const Tri tri = tris[t];
   const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
   const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
@@ -129,9 +139,13 @@ __device__ inline bool is_bar(int64_t t, int32_t u, DeviceSpan<const uint8_t> ke
 }
 
 __global__ void count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
-                           DeviceSpan<int32_t> count) {
+                           DeviceSpan<int32_t> count, const int64_t* live) {
   const int64_t t = thread_index();
   if (t >= nbrs.size) return;
+  if (past_live(t, live)) {
+    count[t] = 0;
+    return;
+  }
   int c = 0;
   for (int k = 0; k < 3; ++k) c += is_bar(t, nbrs[t].v[k], keep);
   count[t] = c;
@@ -139,9 +153,9 @@ __global__ void count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t>
 
 __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
                            DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
-                           DeviceSpan<Bar> bars) {
+                           DeviceSpan<Bar> bars, const int64_t* live) {
   const int64_t t = thread_index();
-  if (t >= tris.size) return;
+  if (t >= tris.size || past_live(t, live)) return;
   int32_t at = position[t];
   for (int k = 0; k < 3; ++k)
     if (is_bar(t, nbrs[t].v[k], keep))
@@ -246,25 +260,25 @@ void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri
 void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                             const ClearanceRule& clear, DeviceSpan<const Tri> tris, ProgramView fd,
                             bool nested_index, double geps, DeviceSpan<uint8_t> keep,
-                            cudaStream_t stream) {
+                            const int64_t* live, cudaStream_t stream) {
   if (tris.size == 0) return;
   centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, clearance, clear, tris, fd,
-                                                                nested_index, geps, keep);
+                                                                nested_index, geps, keep, live);
   MESHD_CHECK_LAUNCH("centroid_filter");
 }
 
 void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
-                       DeviceSpan<int32_t> count, cudaStream_t stream) {
+                       DeviceSpan<int32_t> count, const int64_t* live, cudaStream_t stream) {
   if (nbrs.size == 0) return;
-  count_bars<<<blocks_for(nbrs.size), kBlock, 0, stream>>>(nbrs, keep, count);
+  count_bars<<<blocks_for(nbrs.size), kBlock, 0, stream>>>(nbrs, keep, count, live);
   MESHD_CHECK_LAUNCH("count_bars");
 }
 
 void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
                        DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
-                       DeviceSpan<Bar> bars, cudaStream_t stream) {
+                       DeviceSpan<Bar> bars, const int64_t* live, cudaStream_t stream) {
   if (tris.size == 0) return;
-  write_bars<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, keep, position, bars);
+  write_bars<<<blocks_for(tris.size), kBlock, 0, stream>>>(tris, nbrs, keep, position, bars, live);
   MESHD_CHECK_LAUNCH("write_bars");
 }
 
