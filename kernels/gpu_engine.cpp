@@ -636,6 +636,7 @@ struct GpuEngine::Impl {
     tris.reserve(rows, stream);
     nbrs.reserve(rows, stream);
     size_filter(rows);
+    scale_lagged_ok = false;
     *h_live.get() = m;
     if (replayed) {
       size_bars(3 * rows);
@@ -680,7 +681,6 @@ struct GpuEngine::Impl {
     totals.resize(3);
     degree.resize(n + 1);
     csr_offset.resize(n + 1);
-    scale_lagged_ok = false;
   }
   void size_bars(int64_t room) {
     bars.resize(room);
@@ -731,14 +731,14 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemcpyAsync(h_totals.get()->data(), totals.data(), slots * sizeof(int64_t),
                                      cudaMemcpyDeviceToHost, stream));
   }
-  // What bars_graph's launches depend on: the buffers' places and sizes, and the epoch for the
-  // arguments passed by value (the programs, the clearance rule, geps).
+  // What bars_graph's launches depend on: the buffers' places, the sizes (the bars' room follows
+  // from rows), and the epoch for the arguments passed by value (the programs, the clearance
+  // rule, geps).
   gpu::ReplayGraph::Key bars_key(int64_t rows) const {
     const auto at = [](const void* ptr) { return reinterpret_cast<uint64_t>(ptr); };
     return {epoch,
             static_cast<uint64_t>(n),
             static_cast<uint64_t>(rows),
-            bars.size(),
             at(p.data()),
             at(p_old.data()),
             at(clearance.data()),

@@ -58,7 +58,6 @@ void ReplayGraph::capture(Slot& slot, const Key& key, const Body& body, cudaStre
     cudaGraphDestroy(graph);
   }
   slot.key = key;
-  ++captures_;
 }
 
 }  // namespace meshd::gpu

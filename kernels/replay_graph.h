@@ -31,9 +31,8 @@ class ReplayGraph {
   // and, after a direct run, again, since that run may have moved the scratch it grew.
   void run(const std::function<Key()>& key, const Body& body, cudaStream_t stream);
 
-  // Graph launches and captures so far, for the tests.
+  // Graph launches so far, for the tests.
   int64_t replays() const { return replays_; }
-  int64_t captures() const { return captures_; }
 
  private:
   struct Slot {
@@ -46,7 +45,7 @@ class ReplayGraph {
   int next_slot_ = 0;
   Key direct_[2];  // the keys of the last two direct runs
   int next_direct_ = 0;
-  int64_t replays_ = 0, captures_ = 0;
+  int64_t replays_ = 0;
 };
 
 }  // namespace meshd::gpu
