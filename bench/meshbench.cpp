@@ -34,6 +34,7 @@ struct Options {
   bool exact_scale = false;
   bool step_graph = true;
   bool bars_graph = true;
+  bool steps_together = true;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -46,14 +47,16 @@ struct Options {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
                "                 [--exact-scale] [--no-step-graph] [--no-bars-graph] [--nodes N]\n"
-               "                 [--repeat R] [--phases]\n"
+               "                 [--no-steps-together] [--repeat R] [--phases]\n"
                "                 [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
                "  --exact-scale   the GPU engine measures the bars before every step (by default\n"
                "              it takes the L0 scale from the step before)\n"
                "  --no-step-graph the GPU engine launches a step's kernels one by one and waits\n"
-               "              for each step (by default a CUDA graph runs up to 32 steps)\n"
+               "              for each step (by default up to 32 steps run on the device\n"
+               "              without the host: one cooperative launch, else a CUDA graph)\n"
+               "  --no-steps-together those steps run through the CUDA graph's loop\n"
                "  --no-bars-graph the GPU engine launches a retriangulation's filter, bars and\n"
                "              CSR one by one (by default, up to 2^18 triangles, one CUDA graph)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
@@ -84,6 +87,8 @@ Options parse(int argc, char** argv) {
       o.step_graph = false;
     else if (a == "--no-bars-graph")
       o.bars_graph = false;
+    else if (a == "--no-steps-together")
+      o.steps_together = false;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -121,6 +126,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
     gpu->set_lagged_scale(!o.exact_scale);
     if (!o.step_graph) gpu->set_step_graph(false);
     if (!o.bars_graph) gpu->set_replayed_triangles(0);
+    if (!o.steps_together) gpu->set_steps_together(false);
     gpu->set_host_pool(&pool);
     gpu->warm_up();
     return gpu;

@@ -1,6 +1,8 @@
 // DistMesh steps 4-8 on the device: bar lengths and the L0 scale (a deterministic reduction),
 // forces gathered per node through the bar CSR (no atomics: reproducible bits), the Euler step
 // with momentum, the projection onto the boundary, and the termination measures.
+#include <cooperative_groups.h>
+
 #include <cub/block/block_reduce.cuh>
 
 #include "core/geometry/projection.cuh"
@@ -126,27 +128,116 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   return measures;
 }
 
-// Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
-// which made the step 10% slower at a million nodes; the gathers are latency-bound).
-__global__ void __launch_bounds__(kBlock, 3) move_nodes(const StepBatch* batch) {
-  // The arguments live in device memory, where the step before swapped p and p_next; each block
-  // copies them to shared memory once, word by word.
-  __shared__ MoveArgs a;
+// Each block copies the step's arguments to shared memory once, word by word: they live in
+// device memory, where the step before swapped p and p_next. The loads bypass L1, which may
+// hold the words as they were before the last step of a cooperative launch.
+__device__ void load_move_args(MoveArgs& a, const StepBatch* batch) {
   static_assert(sizeof(MoveArgs) % sizeof(uint64_t) == 0 && sizeof(MoveArgs) / 8 <= kBlock);
   if (threadIdx.x < sizeof(MoveArgs) / sizeof(uint64_t))
     reinterpret_cast<uint64_t*>(&a)[threadIdx.x] =
-        reinterpret_cast<const uint64_t*>(&batch->args)[threadIdx.x];
+        __ldcg(reinterpret_cast<const unsigned long long*>(&batch->args) + threadIdx.x);
   __syncthreads();
-  if (blockIdx.x >= a.partial.size) return;
-  using Reduce = cub::BlockReduce<StepSums, kBlock>;
-  __shared__ typename Reduce::TempStorage temp;
+}
+
+using StepReduce = cub::BlockReduce<StepSums, kBlock>;
+
+// Moves this block's nodes (block b of a.partial.size takes every that many blocks' worth) and
+// writes their measures to a.partial[b].
+__device__ void move_block_nodes(const MoveArgs& a, StepReduce::TempStorage& temp) {
   StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
   const int64_t stride = a.partial.size * blockDim.x;
   for (int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; i < a.p.size;
        i += stride)
     measures = StepOp{}(measures, move_node(a, i));
-  const StepSums total = Reduce(temp).Reduce(measures, StepOp{});
+  const StepSums total = StepReduce(temp).Reduce(measures, StepOp{});
   if (threadIdx.x == 0) a.partial[blockIdx.x] = total;
+}
+
+// Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
+// which made the step 10% slower at a million nodes; the gathers are latency-bound).
+__global__ void __launch_bounds__(kBlock, 3) move_nodes(const StepBatch* batch) {
+  __shared__ MoveArgs a;
+  __shared__ StepReduce::TempStorage temp;
+  load_move_args(a, batch);
+  if (blockIdx.x >= a.partial.size) return;
+  move_block_nodes(a, temp);
+}
+
+// The step's partials summed in an order that does not depend on the summing block's size, so
+// that finish_step and the cooperative steps give the same bits: runs of 32 partials each summed
+// by one warp's shuffle tree, then the runs' sums one after the other. Every thread of the block
+// calls it; thread 0's value is the total.
+constexpr int kMaxStepPartials = 2048;
+constexpr int kWarp = 32;
+struct PartialRuns {
+  StepSums run[kMaxStepPartials / kWarp];
+};
+__device__ StepSums sum_step_partials(DeviceSpan<const StepSums> partial, PartialRuns& runs) {
+  const int lane = threadIdx.x % kWarp, warp = threadIdx.x / kWarp, warps = blockDim.x / kWarp;
+  const int count = static_cast<int>((partial.size + kWarp - 1) / kWarp);
+  for (int r = warp; r < count; r += warps) {
+    const int64_t i = static_cast<int64_t>(r) * kWarp + lane;
+    StepSums v = i < partial.size ? partial[i] : StepSums{0.0, 0.0, 0.0, 0.0, 0.0};
+    for (int offset = kWarp / 2; offset > 0; offset /= 2) {
+      const StepSums o{__shfl_down_sync(0xffffffffu, v.max_move, offset),
+                       __shfl_down_sync(0xffffffffu, v.max_drift, offset),
+                       __shfl_down_sync(0xffffffffu, v.sum_sq, offset),
+                       __shfl_down_sync(0xffffffffu, v.interior, offset),
+                       __shfl_down_sync(0xffffffffu, v.bar_l2, offset)};
+      v = StepOp{}(v, o);
+    }
+    if (lane == 0) runs.run[r] = v;
+  }
+  __syncthreads();
+  StepSums total{0.0, 0.0, 0.0, 0.0, 0.0};
+  if (threadIdx.x == 0)
+    for (int r = 0; r < count; ++r) total = StepOp{}(total, runs.run[r]);
+  return total;
+}
+
+// The end of a step, on one thread: its result, the lagged L0 scale for the next step, the
+// positions swapped, the settling record carried on. Returns whether another step follows: fewer
+// than `limit` ran and the rule does not stop here.
+__device__ bool end_step(StepBatch& b, const StepSums& total) {
+  // Each bar was measured from both ends.
+  // next_scale[1] is sum h^2 over the bars, which stays as measured until the next triangulation.
+  if (b.next_scale != nullptr && b.next_scale[1] > 0.0)
+    b.next_scale[0] = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
+  StepResult r;
+  r.max_move = total.max_move;
+  r.max_drift = total.max_drift;
+  r.rms_move = total.interior > 0.0 ? sqrt(total.sum_sq / total.interior) : 0.0;
+  const int32_t k = b.count++;
+  b.results[k] = r;
+  Vec2* const moved = b.args.p_next.data;
+  b.args.p_next.data = const_cast<Vec2*>(b.args.p.data);
+  b.args.p.data = moved;
+  // The batch's copy of the rule carries the settling record on from step to step.
+  b.rule.settling = b.rule.settle(b.rule.settling, r);
+  return k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling);
+}
+
+// A batch's steps in one cooperative launch, one block per partial: the blocks move their nodes,
+// meet at a grid barrier, block 0 ends the step, and they meet again before the next. At 20k
+// nodes a step of the graph's loop (move_nodes, then finish_step) took about 20 us, most of it
+// the two launches' latency; two grid barriers cost a few.
+__global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
+  namespace cg = cooperative_groups;
+  const cg::grid_group grid = cg::this_grid();
+  __shared__ MoveArgs a;
+  __shared__ StepReduce::TempStorage temp;
+  __shared__ PartialRuns runs;
+  for (;;) {
+    load_move_args(a, batch);
+    move_block_nodes(a, temp);
+    grid.sync();
+    if (blockIdx.x == 0) {
+      const StepSums total = sum_step_partials(a.partial, runs);
+      if (threadIdx.x == 0) batch->more = end_step(*batch, total);
+    }
+    grid.sync();
+    if (!__ldcg(&batch->more)) return;
+  }
 }
 
 __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
@@ -169,33 +260,11 @@ __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Ba
 
 // in_graph: launched by the step graph, whose loop condition `more` it sets.
 __global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditionalHandle more) {
-  using Reduce = cub::BlockReduce<StepSums, kFinishBlock>;
-  __shared__ typename Reduce::TempStorage temp;
-  const DeviceSpan<StepSums> partial = batch->args.partial;
-  StepSums m{0.0, 0.0, 0.0, 0.0, 0.0};
-  for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x) m = StepOp{}(m, partial[i]);
-  const StepSums total = Reduce(temp).Reduce(m, StepOp{});
+  __shared__ PartialRuns runs;
+  const StepSums total = sum_step_partials(batch->args.partial, runs);
   if (threadIdx.x != 0) return;
-  StepBatch& b = *batch;
-  // Each bar was measured from both ends.
-  // next_scale[1] is sum h^2 over the bars, which stays as measured until the next triangulation.
-  if (b.next_scale != nullptr && b.next_scale[1] > 0.0)
-    b.next_scale[0] = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
-  StepResult r;
-  r.max_move = total.max_move;
-  r.max_drift = total.max_drift;
-  r.rms_move = total.interior > 0.0 ? sqrt(total.sum_sq / total.interior) : 0.0;
-  const int32_t k = b.count++;
-  b.results[k] = r;
-  Vec2* const moved = b.args.p_next.data;
-  b.args.p_next.data = const_cast<Vec2*>(b.args.p.data);
-  b.args.p.data = moved;
-  // The batch's copy of the rule carries the settling record on from step to step.
-  b.rule.settling = b.rule.settle(b.rule.settling, r);
-  if (in_graph) {
-    cudaGraphSetConditional(
-        more, k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling));
-  }
+  const bool again = end_step(*batch, total);
+  if (in_graph) cudaGraphSetConditional(more, again);
 }
 
 __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double> length,
@@ -231,7 +300,25 @@ int64_t move_nodes_wave(int device) {
   int per_sm = 0, sms = 0;
   MESHD_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, move_nodes, kBlock, 0));
   MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  return static_cast<int64_t>(per_sm) * sms;
+  return std::min<int64_t>(static_cast<int64_t>(per_sm) * sms, kMaxStepPartials);
+}
+
+bool steps_together_fit(int device, int64_t blocks) {
+  int cooperative = 0, per_sm = 0, sms = 0;
+  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device));
+  if (!cooperative) return false;
+  MESHD_CUDA_CHECK(
+      cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, steps_together, kBlock, 0));
+  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+  return blocks <= static_cast<int64_t>(per_sm) * sms;
+}
+
+void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream) {
+  void* args[] = {&batch};
+  MESHD_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(steps_together),
+                                               static_cast<unsigned>(blocks), kBlock, args, 0,
+                                               stream));
+  MESHD_CHECK_LAUNCH("steps_together");
 }
 
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream) {

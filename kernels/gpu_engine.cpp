@@ -164,6 +164,8 @@ struct GpuEngine::Impl {
   int64_t step_wave = 1;                       // move_nodes_wave
   DeviceBuffer<gpu::StepBatch> batch;          // one, for the step graph
   std::unique_ptr<gpu::LoopGraph> step_graph;  // null: the step's kernels launched one by one
+  // A batch's steps in one cooperative launch rather than the graph's loop, where they fit.
+  bool steps_together = false;
   DeviceBuffer<gpu::TopologyCounters> counters;
   DeviceBuffer<unsigned long long> h_min_bits;
   DeviceBuffer<uint8_t> temp;
@@ -381,7 +383,13 @@ struct GpuEngine::Impl {
     MESHD_CUDA_CHECK(cudaMemcpyAsync(batch.data(), &b, kHead, cudaMemcpyHostToDevice, stream));
     // A lone step costs less launched directly than through the graph's loop (on an H200 at 1M
     // nodes, a step of the exact scale took 119-130 us through it, 110-122 us directly).
-    if (step_graph && limit > 1) {
+    // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
+    // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
+    // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
+    const bool together = steps_together && static_cast<int64_t>(step_partial.size()) < step_wave;
+    if (step_graph && limit > 1 && together) {
+      gpu::launch_steps_together(batch.data(), step_partial.size(), stream);
+    } else if (step_graph && limit > 1) {
       step_graph->launch(stream);
     } else {
       gpu::launch_move_nodes(batch.data(), step_wave, stream);
@@ -767,6 +775,7 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
   impl_->use_device();
   MESHD_CUDA_CHECK(cudaStreamCreateWithFlags(&impl_->stream, cudaStreamNonBlocking));
   impl_->step_wave = gpu::move_nodes_wave(device);
+  set_steps_together(true);
   impl_->batch.resize(1);
   impl_->flip_batch.resize(1);
   MESHD_CUDA_CHECK(
@@ -1060,6 +1069,11 @@ QualityStats GpuEngine::measure_quality(const Mesh& mesh, bool moved) {
 void GpuEngine::set_force_sum(ForceSum mode) { impl_->force_sum = mode; }
 void GpuEngine::set_flip_rounds_per_launch(int rounds) { impl_->flip_rounds_per_launch = rounds; }
 void GpuEngine::set_flip_tail_items(int items) { impl_->flip_tail_items = items; }
+void GpuEngine::set_steps_together(bool on) {
+  // Every batch has at most step_wave blocks.
+  impl_->steps_together = on && gpu::steps_together_fit(impl_->device, impl_->step_wave);
+}
+
 void GpuEngine::set_replayed_triangles(int64_t triangles) { impl_->replayed_triangles = triangles; }
 int64_t GpuEngine::bars_replays() const { return impl_->bars_graph.replays(); }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }

@@ -73,6 +73,10 @@ class GpuEngine final : public Engine {
   // their kernels are launched one by one, one step or eight rounds per round trip (for
   // comparison, and for tools that cannot follow a graph).
   void set_step_graph(bool on);
+  // With the step graph on: a batch's steps in one cooperative launch (launch.h's steps_together;
+  // the default where the device launches cooperatively), or through the graph's loop (off). The
+  // same bits either way.
+  void set_steps_together(bool on);
   // For tests: the flip loop's rounds per launch (gpu::kLoopFlipRounds by default), after
   // which a repair that still finds candidates launches it again.
   void set_flip_rounds_per_launch(int rounds);

@@ -141,12 +141,19 @@ struct StepBatch {
   int32_t first_iteration;  // the loop's number for the first step (step_rule.cuh)
   int32_t limit;            // 1 to kMaxBatchSteps
   int32_t count;
+  int32_t more;  // the cooperative steps' decision after each step, for every block
   StepResult results[kMaxBatchSteps];
 };
 // Steps 5, 7, 8 per node: gather bar forces (no atomics), Euler step with momentum, projection.
 // Always `blocks` blocks (move_nodes_wave), so that one captured graph fits every node count;
 // those past args.partial.size return at once.
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream);
+// The alternative to the step graph's loop where the device launches cooperatively: the batch's
+// steps in one launch of `blocks` (args.partial.size) blocks, with grid barriers between a step's
+// moves and its end, and between steps. The same bits as move_nodes and finish_step one by one.
+// steps_together_fit: whether `blocks` blocks of it run at once on `device`.
+bool steps_together_fit(int device, int64_t blocks);
+void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream);
 // Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
 // next step, fscale * sqrt(sum L^2 / sum h^2), from the lengths that this step measured and the
 // sizes measured at the triangulation (next_scale[1]). In the step graph (`more` given), sets the

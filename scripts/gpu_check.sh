@@ -28,7 +28,7 @@ for step in "${steps[@]}"; do
       # faulted there now and then without naming an access (bench/RESULTS.md, 2026-11-26).
       # racecheck crashes on graphs with conditional nodes, so it runs the kernels launched one
       # by one; over a whole mesh it takes ten minutes.
-      whole='*StepGraph*:*WholeMesh*/0:*WholeMesh*/4'
+      whole='*StepGraph*:*StepsTogether*:*WholeMesh*/0:*WholeMesh*/4'
       [ -n "${MESHD_SANITIZE_FILTER:-}" ] && whole=''
       runs=("memcheck 0 $filter${whole:+:$whole}"
             "memcheck 1 $filter${whole:+:$whole}"

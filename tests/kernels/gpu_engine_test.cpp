@@ -11,6 +11,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "core/common/error.h"
 #include "core/delaunay/exact_predicates.h"
@@ -99,18 +100,20 @@ TEST_P(GpuAgreement, OneStepOnRandomPointsMatchesTheCpu) {
   }
 }
 
-// The step graph runs a batch of steps on the device: the same bits as the same kernels
-// launched one by one, one step per call, and it stops exactly after the first step at which the
-// loop's rule stops (the positions swap after every step, so an odd count checks the hand-back
-// as well).
+// A batch of steps on the device, in one cooperative launch or through the step graph's loop:
+// the same bits as the same kernels launched one by one, one step per call, and it stops exactly
+// after the first step at which the loop's rule stops (the positions swap after every step, so
+// an odd count checks the hand-back as well).
 TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
   SKIP_WITHOUT_GPU();
   const CompiledProblem c = compiled(GetParam(), 3000);
   const auto pts = random_points(c, 3000, 7);
-  for (const bool lagged : {true, false}) {
+  for (const auto& [lagged, together] : {std::pair{true, true}, std::pair{true, false},
+                                         std::pair{false, true}, std::pair{false, false}}) {
     for (const double ttol : {1e9, 0.03}) {
       GpuEngine graph(0), direct(0);
       graph.set_step_graph(true);
+      graph.set_steps_together(together);
       direct.set_step_graph(false);
       EXPECT_EQ(graph.preferred_batch(), 32);
       EXPECT_EQ(direct.preferred_batch(), 1);
@@ -127,8 +130,8 @@ TEST_P(GpuAgreement, StepGraphRunsTheSameStepsAsOneAtATime) {
         expected.push_back(direct.move_points());
         if (rule.stops(expected.back(), 1 + k, Settling{})) break;
       }
-      const std::string where =
-          "lagged " + std::to_string(lagged) + " ttol " + std::to_string(ttol);
+      const std::string where = "lagged " + std::to_string(lagged) + " together " +
+                                std::to_string(together) + " ttol " + std::to_string(ttol);
       ASSERT_EQ(steps.size(), expected.size()) << where;
       if (ttol > 1.0) {
         EXPECT_EQ(steps.size(), 40u) << where;
@@ -207,6 +210,18 @@ TEST_P(GpuAgreement, StepGraphGivesTheSameMesh) {
   direct.set_step_graph(false);
   expect_same_run(generate_mesh(c, graph, nullptr, nullptr),
                   generate_mesh(c, direct, nullptr, nullptr));
+}
+
+// A batch's steps in one cooperative launch and through the step graph's loop: the same job,
+// bit for bit.
+TEST_P(GpuAgreement, StepsTogetherGiveTheGraphLoopsMesh) {
+  SKIP_WITHOUT_GPU();
+  const CompiledProblem c = compiled(GetParam(), 5000);
+  GpuEngine together(0), loop(0);
+  together.set_steps_together(true);
+  loop.set_steps_together(false);
+  expect_same_run(generate_mesh(c, together, nullptr, nullptr),
+                  generate_mesh(c, loop, nullptr, nullptr));
 }
 
 // The clearance (clearance.cuh) skips the distance far inside the domain; evaluating it at every
