@@ -50,8 +50,9 @@ __device__ void open_round_body(FlipBatch* b, bool force_full) {
     b->full = 1;
   }
   if (c->settled) return;
-  // The repair's orientation check found a triangle turned over: its caller drops or rebuilds.
-  if (c->fatal > 0 || c->dropped > 0) {
+  // The repair's orientation check found a triangle turned over that it cannot leave as a wall:
+  // its caller rebuilds (or drops, then repairs again).
+  if (c->fatal > 0 || (c->dropped > 0 && b->walls.size == 0)) {
     c->settled = 1;
     return;
   }
@@ -79,10 +80,12 @@ __device__ void test_edges_body(const FlipBatch& b, Lanes lanes) {
   const int32_t* in_stamp = b.work_stamp[s.in];
   for (int64_t i = lanes.first; i < n; i += lanes.step) {
     const auto t = static_cast<int32_t>(b.round_full ? i : in[i]);
+    const bool walled = b.walls.size > 0;
+    if (walled && !b.walls[t]) continue;
     const Tri tri = b.tris[t], nbr = b.nbrs[t];
     for (int k = 0; k < 3; ++k) {
       const int32_t u = nbr.v[k];
-      if (u < 0) continue;
+      if (u < 0 || (walled && !b.walls[u])) continue;
       // Each edge once: from its lower triangle where both are on the list.
       if (u < t && (b.round_full || in_stamp[u] == b.round)) continue;
       const int32_t d = b.tris[u].v[slot_of(b.nbrs[u], t)];

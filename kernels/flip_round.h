@@ -12,8 +12,11 @@
 // The kernels read their arguments from a FlipBatch in device memory and count the rounds there,
 // so that one cooperative launch runs a repair's rounds until one finds no candidate, with no
 // host round trip in between (launch_flip_loop). A repair may launch its rounds right behind its
-// orientation check (launch_check_orientation): where that found a triangle turned over (fatal or
-// dropped), the rounds flip nothing, and the host, reading the counters once, drops or rebuilds.
+// orientation check (launch_check_orientation): where that found a triangle turned over fatally,
+// the rounds flip nothing, and the host, reading the counters once, rebuilds. The triangles it
+// drops stand as walls (FlipBatch::walls), neither flipped nor flipped across, while the rounds
+// repair the rest; the host removes them afterwards. Removing them first, as boundary, made a
+// repair that dropped any two passes of rounds with a read in between.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -41,6 +44,9 @@ struct FlipBatch {
   DeviceSpan<int32_t> flipped_round;  // #M
   DeviceSpan<int32_t> partner;        // #M
   DeviceSpan<int32_t> undecided;      // the round's undecided edge ids (up to its size)
+  // #M, or empty: the triangles the orientation check dropped (0), left alone by the rounds.
+  // Without walls, a dropped triangle stops the rounds as a fatal one does.
+  DeviceSpan<const uint8_t> walls;
   TopologyCounters* counters;
   int32_t *work[2], *work_stamp[2], *voted, *voted_stamp;  // FlipLists
   int32_t rounds_per_launch;  // the loop ends after this many rounds (the host relaunches)

@@ -504,22 +504,26 @@ struct GpuEngine::Impl {
   // dropped slivers in `dropped`.
   int64_t repair(int64_t& dropped) {
     // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped. The
-    // rounds follow at once and flip nothing where the check found either (flip_round.h), so
-    // that the usual repair, which finds neither, reads the device once.
+    // rounds follow at once (flip_round.h), so that a repair reads the device once: they flip
+    // nothing where the check found a fatal one, and leave the dropped ones as walls, removed
+    // once the rounds settle. The same flips as removing them first: their neighbours' edges
+    // are boundary either way, and the rounds' order follows the triangles' order, which the
+    // removal keeps.
     flags.resize(static_cast<int64_t>(tris.size()));
-    begin_flips();
+    begin_flips(flags.span());
     gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
                                   flags.span(), counters.data(), stream);
     run_flip_rounds(true);
     const gpu::TopologyCounters c = read_counters();
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
-    if (c.dropped == 0) return settle_flips(c);
+    const int64_t flips = settle_flips(c);
+    if (flips < 0 || c.dropped == 0) return flips;
     const int64_t alive =
         gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream);
     flipped_round.resize(alive);
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
-    return flip_to_delaunay();
+    return flips;
   }
 
   // Lawson flips on the device until every edge passes the in-circle test. Returns the flips,
@@ -530,8 +534,8 @@ struct GpuEngine::Impl {
     return settle_flips(read_counters());
   }
 
-  // Sizes and resets what the rounds use; the counters start from zero.
-  void begin_flips() {
+  // Sizes and resets what the rounds use; the counters start from zero. walls: see FlipBatch.
+  void begin_flips(gpu::DeviceSpan<const uint8_t> walls = {}) {
     const int64_t mt = static_cast<int64_t>(tris.size());
     vote.resize(mt);
     partner.resize(mt);
@@ -547,6 +551,7 @@ struct GpuEngine::Impl {
     b.flipped_round = flipped_round.span();
     b.partner = partner.span();
     b.undecided = undecided.span();
+    b.walls = walls;
     b.counters = counters.data();
     for (int k = 0; k < 2; ++k) {
       b.work[k] = flip_lists.work[k].data();
