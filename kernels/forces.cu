@@ -218,9 +218,8 @@ __device__ bool end_step(StepBatch& b, const StepSums& total) {
 }
 
 // A batch's steps in one cooperative launch, one block per partial: the blocks move their nodes,
-// meet at a grid barrier, block 0 ends the step, and they meet again before the next. At 20k
-// nodes a step of the graph's loop (move_nodes, then finish_step) took about 20 us, most of it
-// the two launches' latency; two grid barriers cost a few.
+// meet at a grid barrier, block 0 ends the step, and they meet again before the next. In place
+// of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step against 23.
 __global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
   namespace cg = cooperative_groups;
   const cg::grid_group grid = cg::this_grid();
