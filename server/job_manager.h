@@ -32,6 +32,7 @@ struct WorkerSpec {
   std::string name;  // "gpu0", "cpu1"
   Backend kind;      // kGpu or kCpu
   WorkerEngineFactory factory;
+  unsigned threads = 1;  // the host's threads that a CPU worker's jobs keep busy
 };
 
 struct JobManagerOptions {
@@ -86,6 +87,7 @@ class JobManager {
   std::vector<std::unique_ptr<Worker>> workers_;
   std::atomic<int> live_gpu_workers_{0};
   int cpu_workers_ = 0;
+  unsigned cpu_threads_ = 1;  // the most threads of one CPU worker
   std::atomic<int64_t> live_{0};
   std::atomic<bool> accepting_{true};
 

@@ -34,6 +34,12 @@ void JobQueue::set_gpu_workers(int count) {
   changed_.notify_all();
 }
 
+void JobQueue::set_shared_cpu_limit(int jobs) {
+  std::lock_guard lock(mutex_);
+  shared_cpu_limit_ = jobs;
+  changed_.notify_all();
+}
+
 void JobQueue::push(std::shared_ptr<Job> job) {
   std::vector<std::shared_ptr<Job>> tell;
   {
@@ -63,6 +69,10 @@ double JobQueue::gpu_backlog(Job::Clock::time_point now) const {
 
 JobQueue::Line::iterator JobQueue::shared_job_for_cpu() {
   if (gpu_workers_ == 0) return shared_.begin();
+  const auto shared_on_cpu = std::count_if(running_.begin(), running_.end(), [](const Running& r) {
+    return r.kind == Backend::kCpu && r.shared;
+  });
+  if (shared_cpu_limit_ > 0 && shared_on_cpu >= shared_cpu_limit_) return shared_.end();
   // The GPU workers share their backlog; a shared job behind others waits for those too.
   double gpu_work = gpu_backlog(Job::Clock::now());
   for (auto it = shared_.begin(); it != shared_.end(); ++it) {
@@ -87,8 +97,8 @@ std::shared_ptr<Job> JobQueue::pop(Backend worker) {
   std::unique_lock lock(mutex_);
   std::pair<Line*, Line::iterator> next{nullptr, {}};
   // Woken by every change that can make a job suit this worker: a push, a worker count, a job
-  // done (its GPU time no longer ahead). Time alone only shortens the GPU backlog, which never
-  // turns a CPU worker's no into a yes.
+  // done (its GPU time no longer ahead, or its place among the shared CPU jobs free). Time alone
+  // only shortens the GPU backlog, which never turns a CPU worker's no into a yes.
   changed_.wait(lock, [&] {
     if (closed_) return true;
     next = next_for(worker);
@@ -103,7 +113,8 @@ std::shared_ptr<Job> JobQueue::pop(Backend worker) {
   const double expected = model_.predict(worker, job->spec().estimated_nodes);
   running_.push_back(Running{job.get(), worker,
                              Job::Clock::now() + std::chrono::duration_cast<Job::Clock::duration>(
-                                                     std::chrono::duration<double>(expected))});
+                                                     std::chrono::duration<double>(expected)),
+                             l == &shared_});
   lock.unlock();
   wake(tell);
   return job;

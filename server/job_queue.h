@@ -13,7 +13,8 @@
 // first shared job that it would finish before the GPU workers would, counting the work they
 // have queued and running ahead of it (a RunTimeModel, trained on the workers' measured runs,
 // says how long each job takes where). So small jobs spill onto idle CPU workers when the GPUs
-// are busy, and large ones wait for a GPU. Thread-safe.
+// are busy, and large ones wait for a GPU; and no more of them at once than the limit that keeps
+// some cores for the GPU workers' own threads (set_shared_cpu_limit). Thread-safe.
 #pragma once
 
 #include <condition_variable>
@@ -36,6 +37,9 @@ class JobQueue {
   // How many GPU workers take jobs now (the shared line's jobs go to the CPU workers alone when
   // none is left).
   void set_gpu_workers(int count);
+  // While GPU workers take jobs, the CPU workers run at most `jobs` shared jobs at once (0: no
+  // limit; jobs of the CPU's own line are not counted or held back).
+  void set_shared_cpu_limit(int jobs);
 
   // Queues `job` in the line of job->backend(). Throws Error(kUnavailable) when the queue is
   // full or closed.
@@ -79,6 +83,7 @@ class JobQueue {
     const Job* job;
     Backend kind;
     Job::Clock::time_point expected_end;
+    bool shared;  // taken from the shared line
   };
 
   Line& line(Backend backend) {
@@ -101,6 +106,7 @@ class JobQueue {
   std::vector<Running> running_;
   RunTimeModel model_;
   int gpu_workers_ = 0;
+  int shared_cpu_limit_ = 0;
   uint64_t arrivals_ = 0;
   bool closed_ = false;
 };

@@ -223,7 +223,7 @@ std::vector<WorkerSpec> workers_for(const ServerOptions& o) {
                                ? o.cpu_threads
                                : std::max(1u, cores / static_cast<unsigned>(o.cpu_workers));
   for (int c = 0; c < o.cpu_workers; ++c)
-    out.push_back({"cpu" + std::to_string(c), Backend::kCpu, cpu_engine_factory(threads)});
+    out.push_back({"cpu" + std::to_string(c), Backend::kCpu, cpu_engine_factory(threads), threads});
   if (gpus == 0) {
     spdlog::info("no GPU {}: serving on the CPU ({} worker{} of {} threads)",
                  o.backend == Backend::kCpu ? "used (--backend cpu)" : "visible", o.cpu_workers,

@@ -3,6 +3,7 @@
 // server_jobs_test, so that ThreadSanitizer runs it too.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <thread>
 
@@ -125,6 +126,34 @@ TEST(JobQueue, DeclinedSharedJobIsTakenWhenTheGpuFallsBehind) {
   cpu.join();
   EXPECT_EQ(taken, second);
   EXPECT_EQ(queue.pop(Backend::kGpu), first);
+  queue.close();
+}
+
+// The shared jobs that CPU workers run at once stop at the limit while a GPU worker takes jobs;
+// one that ends makes room, and the CPU's own line is never held back.
+TEST(JobQueue, CpuWorkersRunNoMoreSharedJobsThanTheLimit) {
+  JobQueue queue(64);
+  queue.set_gpu_workers(1);
+  queue.set_shared_cpu_limit(1);
+  queue.observe_run(Backend::kGpu, 2000, 0.010);
+  queue.observe_run(Backend::kCpu, 2000, 0.001);  // every shared job finishes first on the CPU
+  auto first = job_of(2000), second = job_of(2001), cpu_only = job_of(2002, Backend::kCpu);
+  queue.push(first);
+  queue.push(second);
+  EXPECT_EQ(queue.pop(Backend::kCpu), first);
+  queue.push(cpu_only);
+  EXPECT_EQ(queue.pop(Backend::kCpu), cpu_only);  // at the limit, its own line still goes
+  std::shared_ptr<Job> taken;
+  std::atomic<bool> returned{false};
+  std::thread cpu([&] {
+    taken = queue.pop(Backend::kCpu);
+    returned = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_FALSE(returned.load());  // the second shared job waits for the first
+  queue.done(*first, Backend::kCpu, 0.001, true);
+  cpu.join();
+  EXPECT_EQ(taken, second);
   queue.close();
 }
 
