@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "core/delaunay/filtered_predicates.cuh"
+#include "kernels/cooperative_launch.h"
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
 #include "kernels/thread_index.cuh"
@@ -325,21 +326,11 @@ void launch_vote_edges(FlipBatch* batch, DeviceSpan<const int32_t> edges, cudaSt
 }
 
 int64_t flip_loop_blocks(int device) {
-  int cooperative = 0;
-  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device));
-  if (!cooperative) return 0;
-  int per_sm = 0, sms = 0;
-  MESHD_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, flip_loop, kBlock, 0));
-  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  return static_cast<int64_t>(std::min(per_sm, kFlipLoopBlocksPerSm)) * sms;
+  return cooperative_blocks(flip_loop, kBlock, device, kFlipLoopBlocksPerSm);
 }
 
 void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
-  void* args[] = {&batch};
-  MESHD_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(flip_loop),
-                                               static_cast<unsigned>(blocks), kBlock, args, 0,
-                                               stream));
-  MESHD_CHECK_LAUNCH("flip_loop");
+  launch_cooperative(flip_loop, blocks, kBlock, batch, stream, "flip_loop");
 }
 
 void launch_flips(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {

@@ -7,6 +7,7 @@
 
 #include "core/geometry/projection.cuh"
 #include "core/geometry/size_eval.cuh"
+#include "kernels/cooperative_launch.h"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
 
@@ -296,28 +297,15 @@ void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, doubl
 }
 
 int64_t move_nodes_wave(int device) {
-  int per_sm = 0, sms = 0;
-  MESHD_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, move_nodes, kBlock, 0));
-  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  return std::min<int64_t>(static_cast<int64_t>(per_sm) * sms, kMaxStepPartials);
+  return std::min<int64_t>(resident_blocks(move_nodes, kBlock, device), kMaxStepPartials);
 }
 
 bool steps_together_fit(int device, int64_t blocks) {
-  int cooperative = 0, per_sm = 0, sms = 0;
-  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device));
-  if (!cooperative) return false;
-  MESHD_CUDA_CHECK(
-      cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, steps_together, kBlock, 0));
-  MESHD_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-  return blocks <= static_cast<int64_t>(per_sm) * sms;
+  return blocks <= cooperative_blocks(steps_together, kBlock, device);
 }
 
 void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream) {
-  void* args[] = {&batch};
-  MESHD_CUDA_CHECK(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(steps_together),
-                                               static_cast<unsigned>(blocks), kBlock, args, 0,
-                                               stream));
-  MESHD_CHECK_LAUNCH("steps_together");
+  launch_cooperative(steps_together, blocks, kBlock, batch, stream, "steps_together");
 }
 
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream) {
