@@ -158,7 +158,7 @@ struct GpuEngine::Impl {
   ForceSum force_sum = ForceSum::kGather;
   bool lagged_scale = true;
   bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
-  DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, key, key_sorted, value, degree;
+  DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, degree;
   DeviceBuffer<BarSums> bar_partial;
   DeviceBuffer<StepSums> step_partial;
   int64_t step_wave = 1;                       // move_nodes_wave
@@ -697,8 +697,7 @@ struct GpuEngine::Impl {
   }
   void size_bars(int64_t room) {
     bars.resize(room);
-    for (DeviceBuffer<int32_t>* end : {&key, &key_sorted, &value, &csr_entry, &csr_other})
-      end->resize(2 * room);
+    for (DeviceBuffer<int32_t>* end : {&csr_entry, &csr_other}) end->resize(2 * room);
   }
   // The triangulation's `rows` (reserved; those past tris.size() are room, told apart on the
   // device by totals[2], the live count copied from h_live).
@@ -720,18 +719,15 @@ struct GpuEngine::Impl {
   // The bars into their room (size_bars), the CSR of their ends by node, and the kept triangles'
   // count in totals[1]; both totals reach h_totals at the next wait.
   void bars_and_csr(int64_t rows) {
-    const int64_t room = static_cast<int64_t>(bars.size());
     gpu::launch_write_bars(rows_of(tris, rows), rows_of(nbrs, rows), keep.span(), position.span(),
                            bars.span(), totals.data() + 2, stream);
-    // The stable sort keeps each node's bars in bar order; the room's unused ends sort last.
+    // Rows filled by counting, not by sorting the ends: a sort cost a 20k-node job's repair 34
+    // of its ~180 us (bench/RESULTS.md, 2026-11-28).
     MESHD_CUDA_CHECK(cudaMemsetAsync(degree.data(), 0, (n + 1) * sizeof(int32_t), stream));
-    gpu::launch_bar_ends(bars.span(), totals.data(), static_cast<int32_t>(n), key.span(),
-                         value.span(), degree.span(), stream);
-    gpu::sort_pairs(key.data(), key_sorted.data(), value.data(), csr_entry.data(), 2 * room,
-                    gpu::bits_for(n + 1), temp, stream);
-    gpu::launch_csr_other_ends(bars.span(), csr_entry.span(), totals.data(), csr_other.span(),
-                               stream);
+    gpu::launch_count_bar_ends(bars.span(), totals.data(), degree.span(), stream);
     gpu::exclusive_scan(degree.data(), csr_offset.data(), n + 1, temp, stream);
+    gpu::launch_fill_csr(bars.span(), totals.data(), csr_offset.span(), degree.span(),
+                         csr_entry.span(), csr_other.span(), stream);
     MESHD_CUDA_CHECK(cudaMemcpyAsync(p_old.data(), p.data(), n * sizeof(Vec2),
                                      cudaMemcpyDeviceToDevice, stream));
     // Kept triangles, for the stats: position is free again once the bars are written.
@@ -762,9 +758,6 @@ struct GpuEngine::Impl {
             at(position.data()),
             at(totals.data()),
             at(bars.data()),
-            at(key.data()),
-            at(key_sorted.data()),
-            at(value.data()),
             at(csr_entry.data()),
             at(csr_other.data()),
             at(degree.data()),

@@ -242,16 +242,15 @@ void launch_count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> kee
 void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
                        DeviceSpan<const uint8_t> keep, DeviceSpan<const int32_t> position,
                        DeviceSpan<Bar> bars, const int64_t* live, cudaStream_t stream);
-// CSR of bars by node: key[2b + e] = bars[b] end e, value = 2b + e; degree counts by node.
-// `bars` may run past the *bar_count written (room sized before the count is known): the rest
-// get key `sentinel`, above every node, and sort after them.
-void launch_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
-                     DeviceSpan<int32_t> key, DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree,
-                     cudaStream_t stream);
-// other[k] = the far end of CSR entry k (bar * 2 + end), for the 2 *bar_count entries: the step
-// then gathers a neighbour's position with one dependent load instead of two.
-void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                           const int64_t* bar_count, DeviceSpan<int32_t> other,
-                           cudaStream_t stream);
+// The CSR of the bars by node. Its entries are bar ends, 2b + e for end e of bars[b]; a node's
+// row holds its ends in increasing order, and other[k] the far end of entry k. `bars` may run
+// past the *bar_count written (room sized before the count is known): the rest are left out.
+// First the degrees (degree zeroed before), then, once csr_offset holds their exclusive scan
+// (n + 1 entries), the rows; degree is zero again after.
+void launch_count_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                           DeviceSpan<int32_t> degree, cudaStream_t stream);
+void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                     DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
+                     DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other, cudaStream_t stream);
 
 }  // namespace meshd::gpu

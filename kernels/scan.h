@@ -1,5 +1,6 @@
-// Device-wide exclusive scans and a stable key-value radix sort (CUB), for compaction and the
-// bar CSR. Temporary storage grows in `temp` and is kept between calls.
+// Device-wide exclusive scans and a stable key-value radix sort (CUB): compaction, and the
+// refinement's and the 3D repair's sorts. Temporary storage grows in `temp` and is kept between
+// calls.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -23,7 +24,7 @@ void launch_scan_total(const int32_t* position, const uint8_t* flag, int64_t n, 
                        cudaStream_t stream);
 void launch_scan_total(const int32_t* position, const int32_t* flag, int64_t n, int64_t* total,
                        cudaStream_t stream);
-// Stable: equal keys keep the order of values_in, which makes the CSR deterministic.
+// Stable: equal keys keep the order of values_in, which keeps the output deterministic.
 void sort_pairs(const int32_t* keys_in, int32_t* keys_out, const int32_t* values_in,
                 int32_t* values_out, int64_t n, int end_bit, DeviceBuffer<uint8_t>& temp,
                 cudaStream_t stream);

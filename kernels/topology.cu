@@ -162,30 +162,74 @@ __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbr
       bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
 }
 
-__global__ void bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
-                         DeviceSpan<int32_t> key, DeviceSpan<int32_t> value,
-                         DeviceSpan<int32_t> degree) {
+__global__ void count_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                               DeviceSpan<int32_t> degree) {
   const int64_t b = thread_index();
-  if (b >= bars.size) return;
-  value[2 * b] = static_cast<int32_t>(2 * b);
-  value[2 * b + 1] = static_cast<int32_t>(2 * b + 1);
-  if (b >= *bar_count) {
-    key[2 * b] = key[2 * b + 1] = sentinel;
-    return;
-  }
+  if (b >= bars.size || b >= *bar_count) return;
   const Bar bar = bars[b];
-  key[2 * b] = bar.a;
-  key[2 * b + 1] = bar.b;
   atomicAdd(&degree[bar.a], 1);
   atomicAdd(&degree[bar.b], 1);
 }
 
-__global__ void csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                               const int64_t* bar_count, DeviceSpan<int32_t> other) {
+// Each bar end into its node's row, in whatever order the atomics give; degree counts down to
+// zero on the way.
+__global__ void place_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                               DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
+                               DeviceSpan<int32_t> csr_entry) {
   const int64_t k = thread_index();
-  if (k >= csr_entry.size || k >= 2 * *bar_count) return;
-  const int32_t e = csr_entry[k];
-  other[k] = (e & 1) ? bars[e >> 1].a : bars[e >> 1].b;
+  if (k >= 2 * bars.size || k >= 2 * *bar_count) return;
+  const Bar bar = bars[k >> 1];
+  const int32_t node = (k & 1) ? bar.b : bar.a;
+  const int32_t slot = csr_offset[node] + atomicSub(&degree[node], 1) - 1;
+  csr_entry[slot] = static_cast<int32_t>(k);
+}
+
+__device__ int32_t far_end(DeviceSpan<const Bar> bars, int32_t e) {
+  return (e & 1) ? bars[e >> 1].a : bars[e >> 1].b;
+}
+
+// A row of up to W entries sorted in registers (odd-even transposition: static indices), and
+// each entry's far end.
+template <int W>
+__device__ void order_short_row(DeviceSpan<const Bar> bars, int32_t first, int32_t d,
+                                DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other) {
+  int32_t row[W];
+#pragma unroll
+  for (int j = 0; j < W; ++j) row[j] = j < d ? csr_entry[first + j] : INT_MAX;
+#pragma unroll
+  for (int pass = 0; pass < W; ++pass) {
+#pragma unroll
+    for (int j = pass % 2; j + 1 < W; j += 2) {
+      const int32_t low = min(row[j], row[j + 1]);
+      row[j + 1] = max(row[j], row[j + 1]);
+      row[j] = low;
+    }
+  }
+#pragma unroll
+  for (int j = 0; j < W; ++j) {
+    if (j < d) {
+      csr_entry[first + j] = row[j];
+      other[first + j] = far_end(bars, row[j]);
+    }
+  }
+}
+
+// A node's row sorted, and each entry's far end. Rows hold about six entries; a long one (a
+// fixed corner's, a fan in an early triangulation) is sorted in place.
+__global__ void order_rows(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_offset,
+                           DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other) {
+  const int64_t i = thread_index();
+  if (i + 1 >= csr_offset.size) return;
+  const int32_t first = csr_offset[i], last = csr_offset[i + 1];
+  if (last - first <= 8) return order_short_row<8>(bars, first, last - first, csr_entry, other);
+  if (last - first <= 16) return order_short_row<16>(bars, first, last - first, csr_entry, other);
+  for (int32_t k = first + 1; k < last; ++k) {
+    const int32_t e = csr_entry[k];
+    int32_t j = k;
+    for (; j > first && csr_entry[j - 1] > e; --j) csr_entry[j] = csr_entry[j - 1];
+    csr_entry[j] = e;
+  }
+  for (int32_t k = first; k < last; ++k) other[k] = far_end(bars, csr_entry[k]);
 }
 
 }  // namespace
@@ -282,22 +326,24 @@ void launch_write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
   MESHD_CHECK_LAUNCH("write_bars");
 }
 
-void launch_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count, int32_t sentinel,
-                     DeviceSpan<int32_t> key, DeviceSpan<int32_t> value, DeviceSpan<int32_t> degree,
-                     cudaStream_t stream) {
+void launch_count_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                           DeviceSpan<int32_t> degree, cudaStream_t stream) {
   if (bars.size == 0) return;
-  bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, bar_count, sentinel, key, value,
-                                                         degree);
-  MESHD_CHECK_LAUNCH("bar_ends");
+  count_bar_ends<<<blocks_for(bars.size), kBlock, 0, stream>>>(bars, bar_count, degree);
+  MESHD_CHECK_LAUNCH("count_bar_ends");
 }
 
-void launch_csr_other_ends(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_entry,
-                           const int64_t* bar_count, DeviceSpan<int32_t> other,
-                           cudaStream_t stream) {
-  if (csr_entry.size == 0) return;
-  csr_other_ends<<<blocks_for(csr_entry.size), kBlock, 0, stream>>>(bars, csr_entry, bar_count,
-                                                                    other);
-  MESHD_CHECK_LAUNCH("csr_other_ends");
+void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
+                     DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
+                     DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other,
+                     cudaStream_t stream) {
+  if (bars.size == 0) return;
+  place_bar_ends<<<blocks_for(2 * bars.size), kBlock, 0, stream>>>(bars, bar_count, csr_offset,
+                                                                   degree, csr_entry);
+  MESHD_CHECK_LAUNCH("place_bar_ends");
+  order_rows<<<blocks_for(csr_offset.size), kBlock, 0, stream>>>(bars, csr_offset, csr_entry,
+                                                                 other);
+  MESHD_CHECK_LAUNCH("order_rows");
 }
 
 }  // namespace meshd::gpu
