@@ -519,8 +519,10 @@ struct GpuEngine::Impl {
     dropped = c.dropped;
     const int64_t flips = settle_flips(c);
     if (flips < 0 || c.dropped == 0) return flips;
+    // The check counted every triangle it flagged: no wait for the count.
     const int64_t alive =
-        gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream);
+        gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream,
+                            static_cast<int64_t>(tris.size()) - c.dropped);
     flipped_round.resize(alive);
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
     return flips;

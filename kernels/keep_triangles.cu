@@ -6,11 +6,11 @@ namespace meshd::gpu {
 
 int64_t keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
                        DeviceBuffer<Tri>& nbrs, KeepScratch scratch, DeviceBuffer<uint8_t>& temp,
-                       cudaStream_t stream) {
+                       cudaStream_t stream, int64_t kept) {
   const auto m = static_cast<int64_t>(tris.size());
   scratch.position.resize(m);
   exclusive_scan(keep.data, scratch.position.data(), m, temp, stream);
-  const int64_t kept = scan_total(scratch.position.data(), keep.data, m, stream);
+  if (kept < 0) kept = scan_total(scratch.position.data(), keep.data, m, stream);
   scratch.tris.resize(kept);
   scratch.nbrs.resize(kept);
   launch_compact_triangles(tris.span(), nbrs.span(), keep, scratch.position.span(),

@@ -21,9 +21,10 @@ struct KeepScratch {
 };
 
 // Keeps the triangles t of `tris` (#M, with neighbours `nbrs`) with keep[t] (#M). Returns how
-// many.
+// many. A caller that knows how many (`kept`, as a repair does from its counters) spares the
+// wait for the count.
 int64_t keep_triangles(DeviceSpan<const uint8_t> keep, DeviceBuffer<Tri>& tris,
                        DeviceBuffer<Tri>& nbrs, KeepScratch scratch, DeviceBuffer<uint8_t>& temp,
-                       cudaStream_t stream);
+                       cudaStream_t stream, int64_t kept = -1);
 
 }  // namespace meshd::gpu
