@@ -1,5 +1,8 @@
 #include "kernels/replay_graph.h"
 
+#include <utility>
+#include <vector>
+
 #include "kernels/cuda_check.h"
 
 namespace meshd::gpu {
@@ -45,9 +48,13 @@ void ReplayGraph::capture(Slot& slot, const Key& key, const Body& body, cudaStre
   }
   MESHD_CUDA_CHECK(cudaStreamEndCapture(stream, &graph));
   // An update keeps the executable graph and changes its nodes' arguments: cheaper than a new
-  // instantiation, and possible whenever the launches are the same ones.
+  // instantiation, and possible whenever the launches are the same ones. Tried only then, since
+  // the sizes choose between launches (a small scan is one kernel, a large one two): a failed
+  // update is an error of the API's, which compute-sanitizer reports.
+  Shape shape = shape_of(graph);
   cudaGraphExecUpdateResultInfo info{};
-  if (slot.exec == nullptr || cudaGraphExecUpdate(slot.exec, graph, &info) != cudaSuccess) {
+  if (slot.exec == nullptr || shape != slot.shape ||
+      cudaGraphExecUpdate(slot.exec, graph, &info) != cudaSuccess) {
     cudaGetLastError();  // a failed update is not an error of the job's
     if (slot.exec != nullptr) cudaGraphExecDestroy(slot.exec);
     slot.exec = nullptr;
@@ -57,7 +64,27 @@ void ReplayGraph::capture(Slot& slot, const Key& key, const Body& body, cudaStre
   } else {
     cudaGraphDestroy(graph);
   }
+  slot.shape = std::move(shape);
   slot.key = key;
+}
+
+ReplayGraph::Shape ReplayGraph::shape_of(cudaGraph_t graph) {
+  size_t count = 0;
+  MESHD_CUDA_CHECK(cudaGraphGetNodes(graph, nullptr, &count));
+  std::vector<cudaGraphNode_t> nodes(count);
+  MESHD_CUDA_CHECK(cudaGraphGetNodes(graph, nodes.data(), &count));
+  Shape shape;
+  for (cudaGraphNode_t node : nodes) {
+    cudaGraphNodeType type{};
+    MESHD_CUDA_CHECK(cudaGraphNodeGetType(node, &type));
+    shape.push_back(static_cast<uintptr_t>(type));
+    if (type == cudaGraphNodeTypeKernel) {
+      cudaKernelNodeParams params{};
+      MESHD_CUDA_CHECK(cudaGraphKernelNodeGetParams(node, &params));
+      shape.push_back(reinterpret_cast<uintptr_t>(params.func));
+    }
+  }
+  return shape;
 }
 
 }  // namespace meshd::gpu

@@ -35,11 +35,16 @@ class ReplayGraph {
   int64_t replays() const { return replays_; }
 
  private:
+  // A graph's launches in order: each node's type, and a kernel node's function. An executable
+  // graph takes an update only from a graph of the same shape.
+  using Shape = std::vector<uintptr_t>;
   struct Slot {
     Key key;
+    Shape shape;
     cudaGraphExec_t exec = nullptr;
   };
   void capture(Slot& slot, const Key& key, const Body& body, cudaStream_t stream);
+  static Shape shape_of(cudaGraph_t graph);
 
   Slot slots_[2];
   int next_slot_ = 0;
