@@ -1,4 +1,5 @@
 // Device-wide scans and sorts through CUB, with temporary storage from the engine's arena.
+#include <cub/block/block_scan.cuh>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 
@@ -30,11 +31,48 @@ size_t scan_bytes(int kind, int64_t n, Query query) {
   next = (next + 1) % 8;
   return bytes;
 }
+
+// Up to kOneBlockScanMax items scan in one block: one launch, where CUB's device scan is two (its
+// tile states' initialisation, then the scan), and a small job runs a few of them per repair.
+constexpr int kOneBlockThreads = 512;
+constexpr int kOneBlockItems = 16;  // per thread and tile
+constexpr int64_t kOneBlockScanMax = 4 * kOneBlockThreads * kOneBlockItems;
+
+template <typename In>
+__global__ void __launch_bounds__(kOneBlockThreads)
+    one_block_exclusive_scan(const In* in, int32_t* out, int64_t n) {
+  using BlockScan = cub::BlockScan<int32_t, kOneBlockThreads>;
+  __shared__ typename BlockScan::TempStorage scan;
+  int32_t running = 0;
+  for (int64_t base = 0; base < n; base += kOneBlockThreads * kOneBlockItems) {
+    const int64_t first = base + threadIdx.x * kOneBlockItems;
+    int32_t items[kOneBlockItems];
+#pragma unroll
+    for (int j = 0; j < kOneBlockItems; ++j)
+      items[j] = first + j < n ? static_cast<int32_t>(in[first + j]) : 0;
+    int32_t tile_total = 0;
+    BlockScan(scan).ExclusiveSum(items, items, tile_total);
+#pragma unroll
+    for (int j = 0; j < kOneBlockItems; ++j)
+      if (first + j < n) out[first + j] = running + items[j];
+    running += tile_total;
+    __syncthreads();  // the scan's storage serves the next tile
+  }
+}
+
+// Whether n items scan in one block (launched); otherwise the caller runs CUB's device scan.
+template <typename In>
+bool scanned_in_one_block(const In* in, int32_t* out, int64_t n, cudaStream_t stream) {
+  if (n > kOneBlockScanMax) return false;
+  one_block_exclusive_scan<<<1, kOneBlockThreads, 0, stream>>>(in, out, n);
+  MESHD_CHECK_LAUNCH("one_block_exclusive_scan");
+  return true;
+}
 }  // namespace
 
 void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
                     cudaStream_t stream) {
-  if (n == 0) return;
+  if (n == 0 || scanned_in_one_block(in, out, n, stream)) return;
   size_t bytes = scan_bytes(0, n, [&](size_t& b) {
     return cub::DeviceScan::ExclusiveSum(nullptr, b, in, out, n, stream);
   });
@@ -44,7 +82,7 @@ void exclusive_scan(const int32_t* in, int32_t* out, int64_t n, DeviceBuffer<uin
 
 void exclusive_scan(const uint8_t* in, int32_t* out, int64_t n, DeviceBuffer<uint8_t>& temp,
                     cudaStream_t stream) {
-  if (n == 0) return;
+  if (n == 0 || scanned_in_one_block(in, out, n, stream)) return;
   size_t bytes = scan_bytes(1, n, [&](size_t& b) {
     return cub::DeviceScan::ExclusiveScan(nullptr, b, in, out, cuda::std::plus<>{}, int32_t{0}, n,
                                           stream);
