@@ -143,16 +143,15 @@ __device__ void load_move_args(MoveArgs& a, const StepBatch* batch) {
 using StepReduce = cub::BlockReduce<StepSums, kBlock>;
 
 // Moves this block's nodes (block b of a.partial.size takes every that many blocks' worth) and
-// writes their measures to partial[b] (a.partial's, or another run of as many).
-__device__ void move_block_nodes(const MoveArgs& a, StepReduce::TempStorage& temp,
-                                 StepSums* partial) {
+// writes their measures to a.partial[b].
+__device__ void move_block_nodes(const MoveArgs& a, StepReduce::TempStorage& temp) {
   StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
   const int64_t stride = a.partial.size * blockDim.x;
   for (int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; i < a.p.size;
        i += stride)
     measures = StepOp{}(measures, move_node(a, i));
   const StepSums total = StepReduce(temp).Reduce(measures, StepOp{});
-  if (threadIdx.x == 0) partial[blockIdx.x] = total;
+  if (threadIdx.x == 0) a.partial[blockIdx.x] = total;
 }
 
 // Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
@@ -162,7 +161,7 @@ __global__ void __launch_bounds__(kBlock, 3) move_nodes(const StepBatch* batch) 
   __shared__ StepReduce::TempStorage temp;
   load_move_args(a, batch);
   if (blockIdx.x >= a.partial.size) return;
-  move_block_nodes(a, temp, a.partial.data);
+  move_block_nodes(a, temp);
 }
 
 // The step's partials summed in an order that does not depend on the summing block's size, so
@@ -179,12 +178,7 @@ __device__ StepSums sum_step_partials(DeviceSpan<const StepSums> partial, Partia
   const int count = static_cast<int>((partial.size + kWarp - 1) / kWarp);
   for (int r = warp; r < count; r += warps) {
     const int64_t i = static_cast<int64_t>(r) * kWarp + lane;
-    StepSums v{0.0, 0.0, 0.0, 0.0, 0.0};
-    if (i < partial.size) {
-      // Past L1: the cooperative steps write the same partials again two steps on.
-      const auto* word = reinterpret_cast<const double*>(&partial[i]);
-      v = {__ldcg(word), __ldcg(word + 1), __ldcg(word + 2), __ldcg(word + 3), __ldcg(word + 4)};
-    }
+    StepSums v = i < partial.size ? partial[i] : StepSums{0.0, 0.0, 0.0, 0.0, 0.0};
     for (int offset = kWarp / 2; offset > 0; offset /= 2) {
       const StepSums o{__shfl_down_sync(0xffffffffu, v.max_move, offset),
                        __shfl_down_sync(0xffffffffu, v.max_drift, offset),
@@ -224,45 +218,25 @@ __device__ bool end_step(StepBatch& b, const StepSums& total) {
   return k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling);
 }
 
-// A batch's steps in one cooperative launch, one block per partial, with one grid barrier a step.
-// Each block carries its own copy of the batch (and of the lagged scale) from step to step: after
-// the barrier every block sums the step's partials and ends the step itself, in the same order
-// and so to the same bits, and goes on without waiting for a second barrier; block 0 also ends
-// it in the host's copy. The partials alternate between two runs, since a block may write the
-// next step's while a slower one still reads this step's. In place of the graph loop's two
-// launches a step: at 20k nodes on an H200, 18 us a step against 23 with two barriers.
+// A batch's steps in one cooperative launch, one block per partial: the blocks move their nodes,
+// meet at a grid barrier, block 0 ends the step, and they meet again before the next. In place
+// of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step against 23.
 __global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
   namespace cg = cooperative_groups;
   const cg::grid_group grid = cg::this_grid();
-  __shared__ StepBatch own;
-  __shared__ double own_scale[2];
+  __shared__ MoveArgs a;
   __shared__ StepReduce::TempStorage temp;
   __shared__ PartialRuns runs;
-  constexpr int kWords = sizeof(StepBatch) / sizeof(uint64_t);
-  static_assert(sizeof(StepBatch) % sizeof(uint64_t) == 0);
-  for (int w = threadIdx.x; w < kWords; w += blockDim.x)
-    reinterpret_cast<uint64_t*>(&own)[w] =
-        __ldcg(reinterpret_cast<const unsigned long long*>(batch) + w);
-  __syncthreads();
-  if (threadIdx.x == 0 && own.next_scale != nullptr) {
-    own_scale[0] = __ldcg(own.next_scale);
-    own_scale[1] = __ldcg(own.next_scale + 1);
-    if (own.args.scale == own.next_scale) own.args.scale = own_scale;
-    own.next_scale = own_scale;
-  }
-  __syncthreads();
-  const int64_t blocks = own.args.partial.size;
-  for (int64_t step = 0;; ++step) {
-    StepSums* const partial = own.args.partial.data + (step % 2) * blocks;
-    move_block_nodes(own.args, temp, partial);
+  for (;;) {
+    load_move_args(a, batch);
+    move_block_nodes(a, temp);
     grid.sync();
-    const StepSums total = sum_step_partials({partial, blocks}, runs);
-    if (threadIdx.x == 0) {
-      own.more = end_step(own, total);
-      if (blockIdx.x == 0) batch->more = end_step(*batch, total);
+    if (blockIdx.x == 0) {
+      const StepSums total = sum_step_partials(a.partial, runs);
+      if (threadIdx.x == 0) batch->more = end_step(*batch, total);
     }
-    __syncthreads();
-    if (!own.more) return;
+    grid.sync();
+    if (!__ldcg(&batch->more)) return;
   }
 }
 

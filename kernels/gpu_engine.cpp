@@ -345,9 +345,7 @@ struct GpuEngine::Impl {
     } else {
       scattered.resize(0);
     }
-    // Two runs of partials: the cooperative steps alternate between them (steps_together).
-    const int64_t blocks = std::min(gpu::blocks_for(n), step_wave);
-    step_partial.resize(2 * blocks);
+    step_partial.resize(std::min(gpu::blocks_for(n), step_wave));
     gpu::StepBatch& b = *h_batch.get();
     gpu::MoveArgs& a = b.args;
     a.p = p.span();
@@ -373,7 +371,7 @@ struct GpuEngine::Impl {
     a.geps = prm.geps * problem->h0;
     a.deps = prm.deps * problem->h0;
     a.near_boundary = kNearBoundaryRelative * problem->h0;
-    a.partial = {step_partial.data(), blocks};
+    a.partial = step_partial.span();
     b.next_scale = lagged ? scale.data() : nullptr;
     b.fscale = prm.fscale;
     b.rule = rule;
@@ -388,9 +386,9 @@ struct GpuEngine::Impl {
     // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
     // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
     // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
-    const bool together = steps_together && blocks < step_wave;
+    const bool together = steps_together && static_cast<int64_t>(step_partial.size()) < step_wave;
     if (step_graph && limit > 1 && together) {
-      gpu::launch_steps_together(batch.data(), blocks, stream);
+      gpu::launch_steps_together(batch.data(), step_partial.size(), stream);
     } else if (step_graph && limit > 1) {
       step_graph->launch(stream);
     } else {
