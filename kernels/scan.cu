@@ -33,10 +33,11 @@ size_t scan_bytes(int kind, int64_t n, Query query) {
 }
 
 // Up to kOneBlockScanMax items scan in one block: one launch, where CUB's device scan is two (its
-// tile states' initialisation, then the scan), and a small job runs a few of them per repair.
+// tile states' initialisation, then the scan), and a small job runs a few of them per repair. One
+// tile: over several, one block's tiles one after the other cost what CUB's two launches do.
 constexpr int kOneBlockThreads = 512;
 constexpr int kOneBlockItems = 16;  // per thread and tile
-constexpr int64_t kOneBlockScanMax = 4 * kOneBlockThreads * kOneBlockItems;
+constexpr int64_t kOneBlockScanMax = kOneBlockThreads * kOneBlockItems;
 
 template <typename In>
 __global__ void __launch_bounds__(kOneBlockThreads)
