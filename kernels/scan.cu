@@ -32,11 +32,11 @@ size_t scan_bytes(int kind, int64_t n, Query query) {
   return bytes;
 }
 
-// Up to kOneBlockScanMax items scan in one block: one launch, where CUB's device scan is two (its
-// tile states' initialisation, then the scan), and a small job runs a few of them per repair. One
-// tile: over several, one block's tiles one after the other cost what CUB's two launches do.
+// Up to one tile of items scans in one block: one launch, where CUB's device scan is two (its tile
+// states' initialisation, then the scan), and a small job runs a few of them per repair. Over
+// several tiles, one block's tiles one after the other cost what CUB's two launches do.
 constexpr int kOneBlockThreads = 512;
-constexpr int kOneBlockItems = 16;  // per thread and tile
+constexpr int kOneBlockItems = 16;  // per thread
 constexpr int64_t kOneBlockScanMax = kOneBlockThreads * kOneBlockItems;
 
 template <typename In>
@@ -44,21 +44,15 @@ __global__ void __launch_bounds__(kOneBlockThreads)
     one_block_exclusive_scan(const In* in, int32_t* out, int64_t n) {
   using BlockScan = cub::BlockScan<int32_t, kOneBlockThreads>;
   __shared__ typename BlockScan::TempStorage scan;
-  int32_t running = 0;
-  for (int64_t base = 0; base < n; base += kOneBlockThreads * kOneBlockItems) {
-    const int64_t first = base + threadIdx.x * kOneBlockItems;
-    int32_t items[kOneBlockItems];
+  const int64_t first = static_cast<int64_t>(threadIdx.x) * kOneBlockItems;
+  int32_t items[kOneBlockItems];
 #pragma unroll
-    for (int j = 0; j < kOneBlockItems; ++j)
-      items[j] = first + j < n ? static_cast<int32_t>(in[first + j]) : 0;
-    int32_t tile_total = 0;
-    BlockScan(scan).ExclusiveSum(items, items, tile_total);
+  for (int j = 0; j < kOneBlockItems; ++j)
+    items[j] = first + j < n ? static_cast<int32_t>(in[first + j]) : 0;
+  BlockScan(scan).ExclusiveSum(items, items);
 #pragma unroll
-    for (int j = 0; j < kOneBlockItems; ++j)
-      if (first + j < n) out[first + j] = running + items[j];
-    running += tile_total;
-    __syncthreads();  // the scan's storage serves the next tile
-  }
+  for (int j = 0; j < kOneBlockItems; ++j)
+    if (first + j < n) out[first + j] = items[j];
 }
 
 // Whether n items scan in one block (launched); otherwise the caller runs CUB's device scan.
