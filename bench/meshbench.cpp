@@ -35,6 +35,7 @@ struct Options {
   bool step_graph = true;
   bool bars_graph = true;
   bool steps_together = true;
+  bool one_block = true;
   unsigned threads = 0;
   double nodes = 0;
   int repeat = 1;
@@ -47,8 +48,8 @@ struct Options {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: meshbench [--backend cpu|gpu] [--force-sum gather|atomic] [--threads T]\n"
                "                 [--exact-scale] [--no-step-graph] [--no-bars-graph] [--nodes N]\n"
-               "                 [--no-steps-together] [--repeat R] [--phases]\n"
-               "                 [-o OUT]... REQUEST.textproto...\n"
+               "                 [--no-steps-together] [--no-one-block] [--repeat R]\n"
+               "                 [--phases] [-o OUT]... REQUEST.textproto...\n"
                "  --force-sum how the GPU engine sums bar forces per node: a CSR gather\n"
                "              (default, reproducible) or float atomics (for comparison)\n"
                "  --exact-scale   the GPU engine measures the bars before every step (by default\n"
@@ -59,6 +60,9 @@ struct Options {
                "  --no-steps-together those steps run through the CUDA graph's loop\n"
                "  --no-bars-graph the GPU engine launches a retriangulation's filter, bars and\n"
                "              CSR one by one (by default, up to 2^18 triangles, one CUDA graph)\n"
+               "  --no-one-block the GPU engine runs a small triangulation's repairs and bars\n"
+               "              as kernels one by one (by default, up to 8,192 triangles, one\n"
+               "              block's launch each)\n"
                "  --nodes N   rescale h0 so that the mesh aims at about N nodes\n"
                "  --repeat R  mesh each request R times and report the fastest run\n"
                "  --phases    after the table, one more with the seconds of each phase\n"
@@ -89,6 +93,8 @@ Options parse(int argc, char** argv) {
       o.bars_graph = false;
     else if (a == "--no-steps-together")
       o.steps_together = false;
+    else if (a == "--no-one-block")
+      o.one_block = false;
     else if (a == "--threads")
       o.threads = static_cast<unsigned>(std::stoul(value()));
     else if (a == "--nodes")
@@ -127,6 +133,7 @@ std::unique_ptr<meshd::Engine> make_engine([[maybe_unused]] const Options& o,
     if (!o.step_graph) gpu->set_step_graph(false);
     if (!o.bars_graph) gpu->set_replayed_triangles(0);
     if (!o.steps_together) gpu->set_steps_together(false);
+    if (!o.one_block) gpu->set_one_block_topology(false);
     gpu->set_host_pool(&pool);
     gpu->warm_up();
     return gpu;

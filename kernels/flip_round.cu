@@ -9,6 +9,7 @@
 #include "kernels/cooperative_launch.h"
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
+#include "kernels/orientation_check.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
@@ -276,16 +277,50 @@ __global__ void flip_loop(FlipBatch* bp) {
   }
 }
 
-__global__ void begin_flips(FlipBatch views, FlipBatch* batch) {
-  const int64_t i = thread_index();
-  if (i == 0) {
-    memcpy(batch, &views, offsetof(FlipBatch, round));  // the rest belongs to the device
-    *views.counters = TopologyCounters{};
-  }
-  if (i >= views.tris.size) return;
-  constexpr int32_t kForgotten = static_cast<int32_t>(0x80808080);  // below every round
+// A repair's start: the host's views into *batch and the counters at zero (one thread), and
+// triangle i's vote open and its stamps forgotten (set below any round).
+__device__ void begin_flips_head(const FlipBatch& views, FlipBatch* batch) {
+  memcpy(batch, &views, offsetof(FlipBatch, round));  // the rest belongs to the device
+  *views.counters = TopologyCounters{};
+}
+__device__ void begin_flips_of(const FlipBatch& views, int64_t i) {
+  constexpr int32_t kForgotten = static_cast<int32_t>(0x80808080);
   views.vote[i] = 0x7f7f7f7f;
   views.work_stamp[0][i] = views.work_stamp[1][i] = views.voted_stamp[i] = kForgotten;
+}
+__global__ void begin_flips(FlipBatch views, FlipBatch* batch) {
+  const int64_t i = thread_index();
+  if (i == 0) begin_flips_head(views, batch);
+  if (i < views.tris.size) begin_flips_of(views, i);
+}
+
+// A small repair's rounds in one block, its first (full) round included: the loop's tail from
+// the start, without a grid.
+constexpr int kOneBlockThreads = 2 * kBlock;
+__device__ void rounds_in_block(FlipBatch* bp) {
+  FlipBatch& b = *bp;
+  const bool leader = threadIdx.x == 0;
+  for (;;) {
+    if (leader) open_round_body(bp, false);
+    __syncthreads();
+    round_phases(b, block_lanes(), leader, [] { __syncthreads(); });
+    if (!b.again) return;
+  }
+}
+__global__ void __launch_bounds__(kOneBlockThreads) flip_rounds_in_one_block(FlipBatch* bp) {
+  rounds_in_block(bp);
+}
+// What begin_flips, the orientation check and the rounds do one after the other, with block
+// barriers between them.
+__global__ void __launch_bounds__(kOneBlockThreads)
+    repair_in_one_block(FlipBatch views, FlipBatch* bp, OrientationViews o) {
+  if (threadIdx.x == 0) begin_flips_head(views, bp);
+  for (int64_t i = threadIdx.x; i < views.tris.size; i += blockDim.x) begin_flips_of(views, i);
+  __syncthreads();
+  for (int64_t t = threadIdx.x; t < views.tris.size; t += blockDim.x)
+    check_orientation_of(t, views.p, views.tris, o.keep, o.on_boundary, o.alive, views.counters);
+  __syncthreads();
+  rounds_in_block(bp);
 }
 
 // Both kinds of round open and test alike; a round the host drives opens afresh.
@@ -331,6 +366,17 @@ int64_t flip_loop_blocks(int device) {
 
 void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
   launch_cooperative(flip_loop, blocks, kBlock, batch, stream, "flip_loop");
+}
+
+void launch_flip_rounds_in_one_block(FlipBatch* batch, cudaStream_t stream) {
+  flip_rounds_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(batch);
+  MESHD_CHECK_LAUNCH("flip_rounds_in_one_block");
+}
+
+void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
+                                const OrientationViews& check, cudaStream_t stream) {
+  repair_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(views, batch, check);
+  MESHD_CHECK_LAUNCH("repair_in_one_block");
 }
 
 void launch_flips(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {

@@ -102,4 +102,18 @@ void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream);
 // (bench/RESULTS.md, 2026-11-28).
 constexpr int32_t kFlipTailItems = 2 * kBlock;
 
+// A small repair's rounds (up to kOneBlockRows triangles, launch.h), its first included, in one
+// block with block barriers, until one finds no candidate or rounds_per_launch of them: one launch
+// on one SM where the first round's kernels and the loop took six launches and, for the loop,
+// every SM (many small jobs share the device).
+void launch_flip_rounds_in_one_block(FlipBatch* batch, cudaStream_t stream);
+// A small repair whole: launch_begin_flips, launch_check_orientation (launch.h) with `check`'s
+// views (alive: views.walls) and the rounds above, in one launch of one block.
+struct OrientationViews {
+  DeviceSpan<const uint8_t> keep, on_boundary;
+  DeviceSpan<uint8_t> alive;
+};
+void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
+                                const OrientationViews& check, cudaStream_t stream);
+
 }  // namespace meshd::gpu

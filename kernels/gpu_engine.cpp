@@ -143,6 +143,8 @@ struct GpuEngine::Impl {
   PinnedValue<int64_t> h_live;  // filter_and_bars' triangles, for the device's totals[2]
   gpu::ReplayGraph bars_graph;  // filter_and_bars
   int64_t replayed_triangles = kReplayedTriangles;
+  // A small triangulation's repair and bars in one block's launch each (kOneBlockRows).
+  bool one_block_topology = true;
   // Changes with every argument that bars_graph's launches take by value: a new problem (or
   // level) and a new node set.
   uint64_t epoch = 0;
@@ -510,10 +512,15 @@ struct GpuEngine::Impl {
     // are boundary either way, and the rounds' order follows the triangles' order, which the
     // removal keeps.
     flags.resize(static_cast<int64_t>(tris.size()));
-    begin_flips(flags.span());
-    gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
-                                  flags.span(), counters.data(), stream);
-    run_flip_rounds(true);
+    if (small_topology()) {
+      gpu::launch_repair_in_one_block(flip_views(flags.span()), flip_batch.data(),
+                                      {keep.span(), on_boundary.span(), flags.span()}, stream);
+    } else {
+      begin_flips(flags.span());
+      gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
+                                    flags.span(), counters.data(), stream);
+      run_flip_rounds(true);
+    }
     const gpu::TopologyCounters c = read_counters();
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
@@ -538,6 +545,10 @@ struct GpuEngine::Impl {
 
   // Sizes and resets what the rounds use; the counters start from zero. walls: see FlipBatch.
   void begin_flips(gpu::DeviceSpan<const uint8_t> walls = {}) {
+    gpu::launch_begin_flips(flip_views(walls), flip_batch.data(), stream);
+  }
+  // Sizes what the rounds use; their views, for the device's batch.
+  gpu::FlipBatch flip_views(gpu::DeviceSpan<const uint8_t> walls) {
     const int64_t mt = static_cast<int64_t>(tris.size());
     vote.resize(mt);
     partner.resize(mt);
@@ -564,7 +575,7 @@ struct GpuEngine::Impl {
     b.rounds_per_launch = flip_rounds_per_launch;
     b.tail_items = flip_tail_items;
     b.full = 1;
-    gpu::launch_begin_flips(b, flip_batch.data(), stream);
+    return b;
   }
 
   // From the counters `rc` read after the repair's first launch: launches again, and lets the
@@ -598,13 +609,22 @@ struct GpuEngine::Impl {
   // Rounds until one finds no candidate (the device's loop), or kRoundsPerBatch rounds launched
   // one by one, of which those after such a round return at once. A repair's first round tests
   // every edge: it gets a full grid of its own, the loop's few blocks the cascade that follows.
+  // A small triangulation's rounds, the first included, run in one block (flip_round.h).
   void run_flip_rounds(bool first) {
+    if (small_topology()) {
+      gpu::launch_flip_rounds_in_one_block(flip_batch.data(), stream);
+      return;
+    }
     const int rounds_by_kernels = flip_loop_blocks == 0 ? kRoundsPerBatch : first ? 1 : 0;
     for (int r = 0; r < rounds_by_kernels; ++r) {
       gpu::launch_flip_candidates(flip_batch.data(), step_wave, stream);
       gpu::launch_flips(flip_batch.data(), step_wave, stream);
     }
     if (flip_loop_blocks > 0) gpu::launch_flip_loop(flip_batch.data(), flip_loop_blocks, stream);
+  }
+  // Whether the triangulation's repairs run in one block (kOneBlockRows).
+  bool small_topology() const {
+    return one_block_topology && static_cast<int64_t>(tris.size()) <= gpu::kOneBlockRows;
   }
   void unsettle() {
     MESHD_CUDA_CHECK(cudaMemsetAsync(&counters.data()->checked, 0, 2 * sizeof(int32_t), stream));
@@ -638,22 +658,26 @@ struct GpuEngine::Impl {
     return static_cast<int32_t>(flip_ids.size());
   }
 
-  // The kept triangles, their bars and the bars' CSR. A triangulation of up to
-  // replayed_triangles runs them as one graph (bars_graph) over room for a few more triangles
-  // (padded_rows), with room for three bars a triangle, so that nothing waits for their count
-  // and the graph serves the repairs that follow, each dropping a few triangles. A larger one
-  // waits for the count, so that its sort covers the bars alone, since its launches cost little
-  // beside their work.
+  // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in one
+  // launch of one block (bars_in_one_block.cu). One of up to replayed_triangles runs them as one
+  // graph (bars_graph) over room for a few more triangles (padded_rows), with room for three bars
+  // a triangle, so that nothing waits for their count and the graph serves the repairs that
+  // follow, each dropping a few triangles. A larger one waits for the count, so that its sort
+  // covers the bars alone, since its launches cost little beside their work.
   TopologyStats filter_and_bars() {
     const int64_t m = static_cast<int64_t>(tris.size());
-    const bool replayed = m <= replayed_triangles;
+    const bool one_block = one_block_topology && gpu::bars_fit_one_block(m, n);
+    const bool replayed = !one_block && m <= replayed_triangles;
     const int64_t rows = replayed ? padded_rows(m) : m;
     tris.reserve(rows, stream);
     nbrs.reserve(rows, stream);
     size_filter(rows);
     scale_lagged_ok = false;
     *h_live.get() = m;
-    if (replayed) {
+    if (one_block) {
+      size_bars(3 * m);
+      bars_in_one_block();
+    } else if (replayed) {
       size_bars(3 * rows);
       bars_graph.run([&] { return bars_key(rows); },
                      [&](cudaStream_t) {
@@ -673,6 +697,27 @@ struct GpuEngine::Impl {
     sync();
     keep.resize(m);  // the same memory
     return bars_sizes();
+  }
+  // What filter and bars_and_csr do, in one launch (bars_in_one_block.cu).
+  void bars_in_one_block() {
+    gpu::OneBlockBars a{};
+    a.p = p.span();
+    a.clearance = clearance.span();
+    a.clear = clear;
+    a.tris = tris.span();
+    a.nbrs = nbrs.span();
+    a.fd = fd;
+    a.nested_index = nested_index;
+    a.geps = problem->params.geps * problem->h0;
+    a.keep = keep.span();
+    a.bars = bars.span();
+    a.csr_offset = csr_offset.span();
+    a.csr_entry = csr_entry.span();
+    a.csr_other = csr_other.span();
+    a.p_old = p_old.span();
+    a.totals = totals.data();
+    gpu::launch_bars_in_one_block(a, stream);
+    read_totals(2);
   }
   // m rounded up by at most a sixteenth (a multiple of 256 at least).
   static int64_t padded_rows(int64_t m) {
@@ -1075,6 +1120,7 @@ void GpuEngine::set_steps_together(bool on) {
 }
 
 void GpuEngine::set_replayed_triangles(int64_t triangles) { impl_->replayed_triangles = triangles; }
+void GpuEngine::set_one_block_topology(bool on) { impl_->one_block_topology = on; }
 int64_t GpuEngine::bars_replays() const { return impl_->bars_graph.replays(); }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 

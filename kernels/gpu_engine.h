@@ -87,6 +87,10 @@ class GpuEngine final : public Engine {
   // (replay_graph.h; 2^18 triangles by default, 0: none), and how many such runs there were.
   void set_replayed_triangles(int64_t triangles);
   int64_t bars_replays() const;
+  // For tests: whether a small triangulation's repairs (orientation check and flip rounds), and
+  // its bars and CSR, run in one block's launch each (flip_round.h's and launch.h's one-block
+  // forms; on by default) or as the kernels one by one and the flip loop.
+  void set_one_block_topology(bool on);
 
   // The host's threads for its share of the finish (kept by reference; null, the default: the
   // caller's thread alone).

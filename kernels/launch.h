@@ -253,4 +253,31 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
                      DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
                      DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other, cudaStream_t stream);
 
+// ---- bars_in_one_block.cu: a small triangulation's bars in one launch
+// ------------------------------
+
+// What filter, count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do
+// one by one, with the same bits, in one block: for up to kOneBlockRows triangles over fewer
+// nodes.
+constexpr int64_t kOneBlockRows = 8192;
+inline bool bars_fit_one_block(int64_t rows, int64_t n) {
+  return rows <= kOneBlockRows && n < kOneBlockRows;
+}
+struct OneBlockBars {
+  DeviceSpan<const Vec2> p;  // #N
+  DeviceSpan<const float> clearance;
+  ClearanceRule clear;
+  DeviceSpan<const Tri> tris, nbrs;  // #M
+  ProgramView fd;
+  bool nested_index;
+  double geps;
+  DeviceSpan<uint8_t> keep;                  // #M
+  DeviceSpan<Bar> bars;                      // room for every bar: three a triangle
+  DeviceSpan<int32_t> csr_offset;            // #N + 1
+  DeviceSpan<int32_t> csr_entry, csr_other;  // two a bar
+  DeviceSpan<Vec2> p_old;                    // #N: set to p, the positions at this triangulation
+  int64_t* totals;                           // [0] the bars, [1] the kept triangles
+};
+void launch_bars_in_one_block(const OneBlockBars& a, cudaStream_t stream);
+
 }  // namespace meshd::gpu

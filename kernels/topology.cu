@@ -1,13 +1,13 @@
 // Topology on the device: the orientation check that decides between repair and rebuild, the
 // undecided in-circle tests' points for the host, the centroid filter and the bar list (the flips
 // themselves: flip_round.h).
-#include <climits>
-
 #include "core/delaunay/filtered_predicates.cuh"
 #include "core/distmesh/boundary_sliver.cuh"
 #include "core/geometry/sdf_eval.cuh"
+#include "kernels/bar_rules.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
+#include "kernels/orientation_check.cuh"
 #include "kernels/thread_index.cuh"
 
 namespace meshd::gpu {
@@ -19,18 +19,7 @@ __global__ void check_orientation(DeviceSpan<const Vec2> p, DeviceSpan<const Tri
                                   TopologyCounters* counters) {
   const int64_t t = thread_index();
   if (t >= tris.size) return;
-  const Tri tri = tris[t];
-  // Undecided counts as turned over: rebuilding is always safe.
-  const bool ok = orientation_filtered(p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]) > 0;
-  alive[t] = 1;
-  if (ok) return;
-  const bool sliver = on_boundary[tri.v[0]] && on_boundary[tri.v[1]] && on_boundary[tri.v[2]];
-  if (keep[t] && !sliver) {
-    atomicAdd(&counters->fatal, 1);
-  } else {
-    alive[t] = 0;
-    atomicAdd(&counters->dropped, 1);
-  }
+  check_orientation_of(t, p, tris, keep, on_boundary, alive, counters);
 }
 
 __global__ void compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
@@ -97,11 +86,6 @@ __global__ void hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
   }
 }
 
-// Rows past *live (null: none) are room for a triangulation that may grow: no triangle there.
-__device__ inline bool past_live(int64_t t, const int64_t* live) {
-  return live != nullptr && t >= *live;
-}
-
 __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                                 ClearanceRule clear, DeviceSpan<const Tri> tris, ProgramView fd,
                                 bool nested_index, double geps, DeviceSpan<uint8_t> keep,
@@ -112,11 +96,7 @@ __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float
     keep[t] = 0;
     return;
   }
-  const Tri tri = tris[t];
-  const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
-  const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
-  const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
-  keep[t] = clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid, nested_index) < -geps;
+  keep[t] = centroid_kept(p, clearance, clear, tris[t], fd, nested_index, geps);
 }
 
 __global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
@@ -133,11 +113,6 @@ __global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const
   if (v >= nfix) node_keep[v] = 0;
 }
 
-__device__ inline bool is_bar(int64_t t, int32_t u, DeviceSpan<const uint8_t> keep) {
-  if (u >= 0 && u < t) return false;
-  return keep[t] || (u >= 0 && keep[u]);
-}
-
 __global__ void count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t> keep,
                            DeviceSpan<int32_t> count, const int64_t* live) {
   const int64_t t = thread_index();
@@ -146,9 +121,7 @@ __global__ void count_bars(DeviceSpan<const Tri> nbrs, DeviceSpan<const uint8_t>
     count[t] = 0;
     return;
   }
-  int c = 0;
-  for (int k = 0; k < 3; ++k) c += is_bar(t, nbrs[t].v[k], keep);
-  count[t] = c;
+  count[t] = bars_of(t, nbrs, keep);
 }
 
 __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbrs,
@@ -156,10 +129,7 @@ __global__ void write_bars(DeviceSpan<const Tri> tris, DeviceSpan<const Tri> nbr
                            DeviceSpan<Bar> bars, const int64_t* live) {
   const int64_t t = thread_index();
   if (t >= tris.size || past_live(t, live)) return;
-  int32_t at = position[t];
-  for (int k = 0; k < 3; ++k)
-    if (is_bar(t, nbrs[t].v[k], keep))
-      bars[at++] = Bar{tris[t].v[(k + 1) % 3], tris[t].v[(k + 2) % 3]};
+  write_bars_of(t, tris, nbrs, keep, position[t], bars);
 }
 
 __global__ void count_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_count,
@@ -184,52 +154,12 @@ __global__ void place_bar_ends(DeviceSpan<const Bar> bars, const int64_t* bar_co
   csr_entry[slot] = static_cast<int32_t>(k);
 }
 
-__device__ int32_t far_end(DeviceSpan<const Bar> bars, int32_t e) {
-  return (e & 1) ? bars[e >> 1].a : bars[e >> 1].b;
-}
-
-// A row of up to W entries sorted in registers (odd-even transposition: static indices), and
-// each entry's far end.
-template <int W>
-__device__ void order_short_row(DeviceSpan<const Bar> bars, int32_t first, int32_t d,
-                                DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other) {
-  int32_t row[W];
-#pragma unroll
-  for (int j = 0; j < W; ++j) row[j] = j < d ? csr_entry[first + j] : INT_MAX;
-#pragma unroll
-  for (int pass = 0; pass < W; ++pass) {
-#pragma unroll
-    for (int j = pass % 2; j + 1 < W; j += 2) {
-      const int32_t low = min(row[j], row[j + 1]);
-      row[j + 1] = max(row[j], row[j + 1]);
-      row[j] = low;
-    }
-  }
-#pragma unroll
-  for (int j = 0; j < W; ++j) {
-    if (j < d) {
-      csr_entry[first + j] = row[j];
-      other[first + j] = far_end(bars, row[j]);
-    }
-  }
-}
-
-// A node's row sorted, and each entry's far end. Rows hold about six entries; a long one (a
-// fixed corner's, a fan in an early triangulation) is sorted in place.
+// A node's row sorted, and each entry's far end.
 __global__ void order_rows(DeviceSpan<const Bar> bars, DeviceSpan<const int32_t> csr_offset,
                            DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other) {
   const int64_t i = thread_index();
   if (i + 1 >= csr_offset.size) return;
-  const int32_t first = csr_offset[i], last = csr_offset[i + 1];
-  if (last - first <= 8) return order_short_row<8>(bars, first, last - first, csr_entry, other);
-  if (last - first <= 16) return order_short_row<16>(bars, first, last - first, csr_entry, other);
-  for (int32_t k = first + 1; k < last; ++k) {
-    const int32_t e = csr_entry[k];
-    int32_t j = k;
-    for (; j > first && csr_entry[j - 1] > e; --j) csr_entry[j] = csr_entry[j - 1];
-    csr_entry[j] = e;
-  }
-  for (int32_t k = first; k < last; ++k) other[k] = far_end(bars, csr_entry[k]);
+  order_row(bars, csr_offset[i], csr_offset[i + 1], csr_entry, other);
 }
 
 }  // namespace

@@ -673,6 +673,29 @@ TEST(GpuEngine, BarsFromTheReplayedGraphAreTheDirectLaunchesOwn) {
   EXPECT_EQ(a.stats.iterations, b.stats.iterations);
 }
 
+// Small triangulations (up to 8,192 triangles) get their repairs, and their bars and CSR, from
+// one block's launch each (flip_round.h, bars_in_one_block.cu); the same jobs with the kernels
+// one by one and the cooperative flip loop give the same bits, on a uniform disk, a domain with
+// corners and a graded field.
+TEST(GpuEngine, SmallTopologyInOneBlockIsTheKernelsOwn) {
+  SKIP_WITHOUT_GPU();
+  for (const std::string id : {"G1", "G3", "G5"}) {
+    SCOPED_TRACE(id);
+    const CompiledProblem c = compiled(id, 2000);
+    GpuEngine one_block(0), kernels(0);
+    kernels.set_one_block_topology(false);
+    const MeshResult a = generate_mesh(c, one_block, nullptr, nullptr);
+    const MeshResult b = generate_mesh(c, kernels, nullptr, nullptr);
+    EXPECT_EQ(one_block.bars_replays(), 0) << "every triangulation should fit one block";
+    EXPECT_GT(kernels.bars_replays(), 0);
+    ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
+    EXPECT_TRUE(std::equal(a.mesh.points.begin(), a.mesh.points.end(), b.mesh.points.begin()));
+    EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+    EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+    EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
+  }
+}
+
 TEST(GpuEngine, MissingDeviceIsUnavailable) {
   SKIP_WITHOUT_GPU();
   try {
