@@ -1,31 +1,14 @@
 // The per-item rules of the bars' build on the device, shared by its kernels one by one
-// (topology.cu) and by its one-block form for small triangulations (bars_in_one_block.cu): the
-// centroid filter, which edges are bars, and the order of a node's row in the bars' CSR.
+// (topology.cu) and by its one-block form for small triangulations (bars_in_one_block.cu): which
+// edges are bars, and the order of a node's row in the bars' CSR.
 #pragma once
 
 #include <climits>
 #include <cstdint>
 
-#include "core/distmesh/clearance.cuh"
-#include "core/geometry/sdf_eval.cuh"
 #include "kernels/launch.h"
 
 namespace meshd::gpu {
-
-// Rows past *live (null: none) are room for a triangulation that may grow: no triangle there.
-__device__ inline bool past_live(int64_t t, const int64_t* live) {
-  return live != nullptr && t >= *live;
-}
-
-// Whether triangle t's centroid lies inside, decided by its nodes' clearances where they can.
-__device__ inline bool centroid_kept(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
-                                     const ClearanceRule& clear, const Tri& tri, ProgramView fd,
-                                     bool nested_index, double geps) {
-  const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
-  const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
-  const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
-  return clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid, nested_index) < -geps;
-}
 
 // Edge (t, u) is a bar of t when u is higher or missing and either side is kept.
 __device__ inline bool is_bar(int64_t t, int32_t u, DeviceSpan<const uint8_t> keep) {

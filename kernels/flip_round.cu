@@ -296,7 +296,7 @@ __global__ void begin_flips(FlipBatch views, FlipBatch* batch) {
 
 // A small repair's rounds in one block, its first (full) round included: the loop's tail from
 // the start, without a grid.
-constexpr int kOneBlockThreads = 2 * kBlock;
+constexpr int kOneBlockThreads = 4 * kBlock;
 __device__ void rounds_in_block(FlipBatch* bp) {
   FlipBatch& b = *bp;
   const bool leader = threadIdx.x == 0;

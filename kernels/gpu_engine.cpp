@@ -658,12 +658,12 @@ struct GpuEngine::Impl {
     return static_cast<int32_t>(flip_ids.size());
   }
 
-  // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in one
-  // launch of one block (bars_in_one_block.cu). One of up to replayed_triangles runs them as one
-  // graph (bars_graph) over room for a few more triangles (padded_rows), with room for three bars
-  // a triangle, so that nothing waits for their count and the graph serves the repairs that
-  // follow, each dropping a few triangles. A larger one waits for the count, so that its sort
-  // covers the bars alone, since its launches cost little beside their work.
+  // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in two
+  // launches, the filter's and one block's (bars_in_one_block.cu). One of up to replayed_triangles
+  // runs them as one graph (bars_graph) over room for a few more triangles (padded_rows), with room
+  // for three bars a triangle, so that nothing waits for their count and the graph serves the
+  // repairs that follow, each dropping a few triangles. A larger one waits for the count, so that
+  // its sort covers the bars alone, since its launches cost little beside their work.
   TopologyStats filter_and_bars() {
     const int64_t m = static_cast<int64_t>(tris.size());
     const bool one_block = one_block_topology && gpu::bars_fit_one_block(m, n);
@@ -698,17 +698,15 @@ struct GpuEngine::Impl {
     keep.resize(m);  // the same memory
     return bars_sizes();
   }
-  // What filter and bars_and_csr do, in one launch (bars_in_one_block.cu).
+  // What filter and bars_and_csr do, in two launches: the filter's, and one block's for the rest
+  // (bars_in_one_block.cu).
   void bars_in_one_block() {
+    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
+                                problem->params.geps * problem->h0, keep.span(), nullptr, stream);
     gpu::OneBlockBars a{};
     a.p = p.span();
-    a.clearance = clearance.span();
-    a.clear = clear;
     a.tris = tris.span();
     a.nbrs = nbrs.span();
-    a.fd = fd;
-    a.nested_index = nested_index;
-    a.geps = problem->params.geps * problem->h0;
     a.keep = keep.span();
     a.bars = bars.span();
     a.csr_offset = csr_offset.span();

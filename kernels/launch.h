@@ -256,22 +256,17 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
 // ---- bars_in_one_block.cu: a small triangulation's bars in one launch
 // ------------------------------
 
-// What filter, count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do
-// one by one, with the same bits, in one block: for up to kOneBlockRows triangles over fewer
-// nodes.
+// What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
+// one after the centroid filter, with the same bits, in one block: for up to kOneBlockRows
+// triangles over fewer nodes.
 constexpr int64_t kOneBlockRows = 8192;
 inline bool bars_fit_one_block(int64_t rows, int64_t n) {
   return rows <= kOneBlockRows && n < kOneBlockRows;
 }
 struct OneBlockBars {
-  DeviceSpan<const Vec2> p;  // #N
-  DeviceSpan<const float> clearance;
-  ClearanceRule clear;
-  DeviceSpan<const Tri> tris, nbrs;  // #M
-  ProgramView fd;
-  bool nested_index;
-  double geps;
-  DeviceSpan<uint8_t> keep;                  // #M
+  DeviceSpan<const Vec2> p;                  // #N
+  DeviceSpan<const Tri> tris, nbrs;          // #M
+  DeviceSpan<const uint8_t> keep;            // #M, the centroid filter's
   DeviceSpan<Bar> bars;                      // room for every bar: three a triangle
   DeviceSpan<int32_t> csr_offset;            // #N + 1
   DeviceSpan<int32_t> csr_entry, csr_other;  // two a bar

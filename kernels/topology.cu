@@ -86,6 +86,11 @@ __global__ void hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
   }
 }
 
+// Rows past *live (null: none) are room for a triangulation that may grow: no triangle there.
+__device__ inline bool past_live(int64_t t, const int64_t* live) {
+  return live != nullptr && t >= *live;
+}
+
 __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
                                 ClearanceRule clear, DeviceSpan<const Tri> tris, ProgramView fd,
                                 bool nested_index, double geps, DeviceSpan<uint8_t> keep,
@@ -96,7 +101,11 @@ __global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float
     keep[t] = 0;
     return;
   }
-  keep[t] = centroid_kept(p, clearance, clear, tris[t], fd, nested_index, geps);
+  const Tri tri = tris[t];
+  const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
+  const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
+  const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
+  keep[t] = clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid, nested_index) < -geps;
 }
 
 __global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
