@@ -9,6 +9,7 @@
 #include "kernels/launch.h"
 #include "kernels/orientation_check.cuh"
 #include "kernels/thread_index.cuh"
+#include "kernels/triangle_compaction.cuh"
 
 namespace meshd::gpu {
 namespace {
@@ -28,13 +29,7 @@ __global__ void compact_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const T
                                   DeviceSpan<Tri> nbrs_out) {
   const int64_t t = thread_index();
   if (t >= tris.size || !alive[t]) return;
-  Tri n;
-  for (int k = 0; k < 3; ++k) {
-    const int32_t u = nbrs[t].v[k];
-    n.v[k] = (u < 0 || !alive[u]) ? -1 : position[u];
-  }
-  tris_out[position[t]] = tris[t];
-  nbrs_out[position[t]] = n;
+  compact_triangle(t, tris, nbrs, alive, position, tris_out, nbrs_out);
 }
 
 __global__ void surviving_triangles(DeviceSpan<const Tri> tris, DeviceSpan<const uint8_t> node_kept,
