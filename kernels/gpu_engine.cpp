@@ -703,18 +703,17 @@ struct GpuEngine::Impl {
   void bars_in_one_block() {
     gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
                                 problem->params.geps * problem->h0, keep.span(), nullptr, stream);
-    gpu::OneBlockBars a{};
-    a.p = p.span();
-    a.tris = tris.span();
-    a.nbrs = nbrs.span();
-    a.keep = keep.span();
-    a.bars = bars.span();
-    a.csr_offset = csr_offset.span();
-    a.csr_entry = csr_entry.span();
-    a.csr_other = csr_other.span();
-    a.p_old = p_old.span();
-    a.totals = totals.data();
-    gpu::launch_bars_in_one_block(a, stream);
+    gpu::launch_bars_in_one_block({.p = p.span(),
+                                   .tris = tris.span(),
+                                   .nbrs = nbrs.span(),
+                                   .keep = keep.span(),
+                                   .bars = bars.span(),
+                                   .csr_offset = csr_offset.span(),
+                                   .csr_entry = csr_entry.span(),
+                                   .csr_other = csr_other.span(),
+                                   .p_old = p_old.span(),
+                                   .totals = totals.data()},
+                                  stream);
     read_totals(2);
   }
   // m rounded up by at most a sixteenth (a multiple of 256 at least).
