@@ -1,5 +1,6 @@
 // flip_round.h: grid-stride phases over a round's lists, whose lengths live on the device; each
-// phase is a kernel of its own, or a stretch of the cooperative loop between two grid barriers.
+// phase is a kernel of its own, or a stretch of the cooperative loop between two grid barriers,
+// or of one block's loop between two block barriers (the loop's tail, a small repair).
 #include <cooperative_groups.h>
 
 #include <algorithm>

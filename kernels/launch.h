@@ -253,13 +253,15 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
                      DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
                      DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other, cudaStream_t stream);
 
-// ---- bars_in_one_block.cu: a small triangulation's bars in one launch
-// ------------------------------
+// ---- bars_in_one_block.cu: a small triangulation's bars in one launch ---------------------------
 
-// What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
-// one after the centroid filter, with the same bits, in one block: for up to kOneBlockRows
-// triangles over fewer nodes.
+// A small triangulation, of up to this many triangles, takes its repair (flip_round.h), its
+// compaction (keep_triangles.h) and its bars (below) in one launch of one block each: a block of
+// 1,024 threads holds it in eight rows a thread.
 constexpr int64_t kOneBlockRows = 8192;
+// What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
+// one after the centroid filter, with the same bits: for up to kOneBlockRows triangles over fewer
+// nodes.
 inline bool bars_fit_one_block(int64_t rows, int64_t n) {
   return rows <= kOneBlockRows && n < kOneBlockRows;
 }
