@@ -37,6 +37,8 @@ __global__ void __launch_bounds__(kThreads) bars_in_one_block(OneBlockBars a) {
 #pragma unroll
   for (int j = 0; j < kItems; ++j) kept += row(j) < m && a.keep[row(j)];
   atomicAdd(&kept_count, kept);
+  __syncthreads();  // kept_count whole before thread 0 reads it below
+
   // The bars: each triangle's at the exclusive scan of their counts in row order, as write_bars
   // places them; one scan a stripe, each stripe after the ones before.
   int32_t at[kItems], stripe_total[kItems];
