@@ -10,6 +10,7 @@
 #include "kernels/cooperative_launch.h"
 #include "kernels/cuda_check.h"
 #include "kernels/flip_round.h"
+#include "kernels/one_block.cuh"
 #include "kernels/orientation_check.cuh"
 #include "kernels/thread_index.cuh"
 
@@ -297,7 +298,6 @@ __global__ void begin_flips(FlipBatch views, FlipBatch* batch) {
 
 // A small repair's rounds in one block, its first (full) round included: the loop's tail from
 // the start, without a grid.
-constexpr int kOneBlockThreads = 4 * kBlock;
 __device__ void rounds_in_block(FlipBatch* bp) {
   FlipBatch& b = *bp;
   const bool leader = threadIdx.x == 0;

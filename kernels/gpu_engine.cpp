@@ -673,24 +673,27 @@ struct GpuEngine::Impl {
     nbrs.reserve(rows, stream);
     size_filter(rows);
     scale_lagged_ok = false;
-    *h_live.get() = m;
     if (one_block) {
       size_bars(3 * m);
       bars_in_one_block();
-    } else if (replayed) {
-      size_bars(3 * rows);
-      bars_graph.run([&] { return bars_key(rows); },
-                     [&](cudaStream_t) {
-                       filter(rows);
-                       bars_and_csr(rows);
-                     },
-                     stream);
     } else {
-      filter(rows);
-      read_totals(1);
-      sync();
-      size_bars((*h_totals.get())[0]);
-      bars_and_csr(rows);
+      size_kernels_scratch(rows);
+      *h_live.get() = m;
+      if (replayed) {
+        size_bars(3 * rows);
+        bars_graph.run([&] { return bars_key(rows); },
+                       [&](cudaStream_t) {
+                         filter(rows);
+                         bars_and_csr(rows);
+                       },
+                       stream);
+      } else {
+        filter(rows);
+        read_totals(1);
+        sync();
+        size_bars((*h_totals.get())[0]);
+        bars_and_csr(rows);
+      }
     }
     // The device idle at the end: with the CSR's sort still running as the steps begin, memcheck
     // reports garbage reads inside the step graph, unexplained (bench/RESULTS.md, 2026-11-28).
@@ -733,11 +736,14 @@ struct GpuEngine::Impl {
   }
   void size_filter(int64_t rows) {
     keep.resize(rows);
+    totals.resize(3);
+    csr_offset.resize(n + 1);
+  }
+  // What the kernels one by one use besides (filter, bars_and_csr).
+  void size_kernels_scratch(int64_t rows) {
     count.resize(rows);
     position.resize(rows);
-    totals.resize(3);
     degree.resize(n + 1);
-    csr_offset.resize(n + 1);
   }
   void size_bars(int64_t room) {
     bars.resize(room);

@@ -256,8 +256,8 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
 // ---- bars_in_one_block.cu: a small triangulation's bars in one launch ---------------------------
 
 // A small triangulation, of up to this many triangles, takes its repair (flip_round.h), its
-// compaction (keep_triangles.h) and its bars (below) in one launch of one block each: a block of
-// 1,024 threads holds it in eight rows a thread.
+// compaction (keep_triangles.h) and its bars (below) in one launch of one block each
+// (one_block.cuh): a block of 1,024 threads holds it in eight rows a thread.
 constexpr int64_t kOneBlockRows = 8192;
 // What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
 // one after the centroid filter, with the same bits: for up to kOneBlockRows triangles over fewer
