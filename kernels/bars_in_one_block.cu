@@ -16,7 +16,7 @@ namespace {
 __global__ void __launch_bounds__(kOneBlockThreads) bars_in_one_block(OneBlockBars a) {
   __shared__ StripeScanStorage scan;
   __shared__ int32_t degree[kOneBlockRows];  // n + 1 of them, counted up and then down
-  const int64_t m = a.tris.size, n = a.p.size;
+  const int64_t m = a.live != nullptr ? *a.live : a.tris.size, n = a.p.size;
   for (int64_t i = threadIdx.x; i <= n; i += kOneBlockThreads) degree[i] = 0;
 
   // The kept triangles, counted.

@@ -13,6 +13,7 @@
 #include "kernels/one_block.cuh"
 #include "kernels/orientation_check.cuh"
 #include "kernels/thread_index.cuh"
+#include "kernels/triangle_compaction.cuh"
 
 namespace meshd::gpu {
 namespace {
@@ -313,8 +314,7 @@ __global__ void __launch_bounds__(kOneBlockThreads) flip_rounds_in_one_block(Fli
 }
 // What begin_flips, the orientation check and the rounds do one after the other, with block
 // barriers between them.
-__global__ void __launch_bounds__(kOneBlockThreads)
-    repair_in_one_block(FlipBatch views, FlipBatch* bp, OrientationViews o) {
+__device__ void repair_in_block(const FlipBatch& views, FlipBatch* bp, const OrientationViews& o) {
   if (threadIdx.x == 0) begin_flips_head(views, bp);
   for (int64_t i = threadIdx.x; i < views.tris.size; i += blockDim.x) begin_flips_of(views, i);
   __syncthreads();
@@ -322,6 +322,28 @@ __global__ void __launch_bounds__(kOneBlockThreads)
     check_orientation_of(t, views.p, views.tris, o.keep, o.on_boundary, o.alive, views.counters);
   __syncthreads();
   rounds_in_block(bp);
+}
+__global__ void __launch_bounds__(kOneBlockThreads)
+    repair_in_one_block(FlipBatch views, FlipBatch* bp, OrientationViews o) {
+  repair_in_block(views, bp, o);
+}
+
+// The repair, then, where it settled with nothing left to the host, what keep_triangles does,
+// with a block barrier between them; the live count for the filter and the bars that follow.
+__global__ void __launch_bounds__(kOneBlockThreads)
+    repair_and_keep_in_one_block(FlipBatch views, FlipBatch* bp, OneBlockRepair r) {
+  repair_in_block(views, bp, r.check);
+  __syncthreads();
+  const TopologyCounters* c = views.counters;
+  int64_t m = views.tris.size;
+  const bool settled =
+      __ldcg(&c->fatal) == 0 && __ldcg(&c->undecided) == 0 && __ldcg(&c->candidates) == 0;
+  if (settled && __ldcg(&c->dropped) > 0) {
+    m = compact_in_block(r.check.alive, views.tris, views.nbrs, r.position, r.tris_out, r.nbrs_out);
+    // The rounds' record of each triangle's last flip, for the renumbered triangles.
+    for (int64_t i = threadIdx.x; i < m; i += kOneBlockThreads) views.flipped_round[i] = -1;
+  }
+  if (threadIdx.x == 0) *r.live = m;
 }
 
 // Both kinds of round open and test alike; a round the host drives opens afresh.
@@ -378,6 +400,12 @@ void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
                                 const OrientationViews& check, cudaStream_t stream) {
   repair_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(views, batch, check);
   MESHD_CHECK_LAUNCH("repair_in_one_block");
+}
+
+void launch_repair_and_keep_in_one_block(const FlipBatch& views, FlipBatch* batch,
+                                         const OneBlockRepair& r, cudaStream_t stream) {
+  repair_and_keep_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(views, batch, r);
+  MESHD_CHECK_LAUNCH("repair_and_keep_in_one_block");
 }
 
 void launch_flips(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {

@@ -115,5 +115,19 @@ struct OrientationViews {
 };
 void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
                                 const OrientationViews& check, cudaStream_t stream);
+// A small repair whole as above, and, where it settled with no fatal triangle and nothing left
+// to the host, the removal of its dropped triangles (keep_triangles.h), in one launch of one
+// block; *live is then the triangles' count, for the centroid filter and the bars launched behind
+// it (launch.h), so that the host reads the counters and the totals once. Where the repair did not
+// settle, the triangles stay as they are, and the host goes on from the counters; the filter and
+// the bars behind it then go for nothing.
+struct OneBlockRepair {
+  OrientationViews check;
+  DeviceSpan<int32_t> position;        // #M: the removal's scan
+  DeviceSpan<Tri> tris_out, nbrs_out;  // #M: the kept triangles before they are copied back
+  int64_t* live;
+};
+void launch_repair_and_keep_in_one_block(const FlipBatch& views, FlipBatch* batch,
+                                         const OneBlockRepair& r, cudaStream_t stream);
 
 }  // namespace meshd::gpu

@@ -140,8 +140,9 @@ struct GpuEngine::Impl {
   DeviceBuffer<int32_t> vote, flipped_round, partner, position, count, next;
   DeviceBuffer<int64_t> totals;  // scan totals, read through pinned memory at the next wait
   PinnedValue<std::array<int64_t, 2>> h_totals;
-  PinnedValue<int64_t> h_live;  // filter_and_bars' triangles, for the device's totals[2]
-  gpu::ReplayGraph bars_graph;  // filter_and_bars
+  PinnedValue<int64_t> h_live;            // filter_and_bars' triangles, for the device's totals[2]
+  gpu::ReplayGraph bars_graph;            // filter_and_bars
+  int64_t one_read_retriangulations = 0;  // repair_and_bars' that built the bars
   int64_t replayed_triangles = kReplayedTriangles;
   // A small triangulation's repair and bars in one block's launch each (kOneBlockRows).
   bool one_block_topology = true;
@@ -496,10 +497,54 @@ struct GpuEngine::Impl {
   // Returns the flips, or -1 when a rebuild is needed; `refilled` tells whether a fold was mended.
   int64_t repair_folds_too(int64_t& dropped, bool& refilled) {
     const int64_t flips = repair(dropped);
-    if (flips >= 0) return flips;
+    return flips >= 0 ? flips : mend_folds(refilled);
+  }
+  // After a repair that called for a rebuild: the fold cut out and filled, then flipped.
+  int64_t mend_folds(bool& refilled) {
     if (!prepare_completion()) return -1;
     refilled = true;
     return flip_prepared();
+  }
+
+  // Whether a partial retriangulation's repair removes its dropped triangles in the same launch,
+  // with the filter and the bars behind it before the host reads (flip_round.h's OneBlockRepair).
+  bool one_block_retriangulation() const {
+    return one_block_topology && gpu::bars_fit_one_block(static_cast<int64_t>(tris.size()), n);
+  }
+  // repair_folds_too and filter_and_bars with one read, where the repair settles on the device
+  // (flip_round.h's OneBlockRepair); `built` tells whether it did, and the bars are built.
+  int64_t repair_and_bars(int64_t& dropped, bool& refilled, bool& built) {
+    const auto m = static_cast<int64_t>(tris.size());
+    flags.resize(m);
+    position.resize(m);
+    tris_tmp.resize(m);
+    nbrs_tmp.resize(m);
+    size_filter(m);
+    size_bars(3 * m);
+    scale_lagged_ok = false;
+    int64_t* const live = totals.data() + 2;
+    gpu::launch_repair_and_keep_in_one_block(
+        flip_views(flags.span()), flip_batch.data(),
+        {.check = {keep.span(), on_boundary.span(), flags.span()},
+         .position = position.span(),
+         .tris_out = tris_tmp.span(),
+         .nbrs_out = nbrs_tmp.span(),
+         .live = live},
+        stream);
+    bars_in_one_block(live);
+    const gpu::TopologyCounters c = read_counters();
+    built = c.fatal == 0 && c.undecided == 0 && c.candidates == 0;
+    one_read_retriangulations += built;
+    if (!built) {
+      const int64_t flips = finish_repair(c, dropped);
+      return flips >= 0 ? flips : mend_folds(refilled);
+    }
+    dropped = c.dropped;
+    const int64_t alive = m - c.dropped;
+    for (DeviceBuffer<Tri>* t : {&tris, &nbrs}) t->resize(alive);  // the same memory
+    keep.resize(alive);
+    if (c.dropped > 0) flipped_round.resize(alive);  // reset on the device
+    return c.flips;
   }
 
   // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
@@ -521,7 +566,11 @@ struct GpuEngine::Impl {
                                     flags.span(), counters.data(), stream);
       run_flip_rounds(true);
     }
-    const gpu::TopologyCounters c = read_counters();
+    return finish_repair(read_counters(), dropped);
+  }
+  // The repair's rest once its first launch is read: more rounds where they did not settle, the
+  // dropped triangles removed.
+  int64_t finish_repair(const gpu::TopologyCounters c, int64_t& dropped) {
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
     const int64_t flips = settle_flips(c);
@@ -702,10 +751,10 @@ struct GpuEngine::Impl {
     return bars_sizes();
   }
   // What filter and bars_and_csr do, in two launches: the filter's, and one block's for the rest
-  // (bars_in_one_block.cu).
-  void bars_in_one_block() {
+  // (bars_in_one_block.cu); over the first *live triangles where live is given (on the device).
+  void bars_in_one_block(const int64_t* live = nullptr) {
     gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
-                                problem->params.geps * problem->h0, keep.span(), nullptr, stream);
+                                problem->params.geps * problem->h0, keep.span(), live, stream);
     gpu::launch_bars_in_one_block({.p = p.span(),
                                    .tris = tris.span(),
                                    .nbrs = nbrs.span(),
@@ -715,7 +764,8 @@ struct GpuEngine::Impl {
                                    .csr_entry = csr_entry.span(),
                                    .csr_other = csr_other.span(),
                                    .p_old = p_old.span(),
-                                   .totals = totals.data()},
+                                   .totals = totals.data(),
+                                   .live = live},
                                   stream);
     read_totals(2);
   }
@@ -905,6 +955,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   Impl& s = *impl_;
   s.use_device();
   TopologyStats stats;
+  bool bars_built = false;  // behind the repair, read with it (repair_and_bars)
   stats.full = full || !s.have_triangulation;
   if (stats.full && s.prepared) {
     stats.flips = s.flip_prepared();
@@ -940,7 +991,9 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     }
     stats.repair_failed = true;
   } else if (!stats.full) {
-    const int64_t flips = s.repair_folds_too(stats.dropped, stats.folds_refilled);
+    const int64_t flips = s.one_block_retriangulation()
+                              ? s.repair_and_bars(stats.dropped, stats.folds_refilled, bars_built)
+                              : s.repair_folds_too(stats.dropped, stats.folds_refilled);
     if (flips < 0) {
       stats.full = true;
       stats.repair_failed = true;
@@ -952,7 +1005,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
   if (s.completion_failed) stats.repair_failed = true;
   s.completion_failed = false;
   s.have_triangulation = true;
-  const TopologyStats sizes = s.filter_and_bars();
+  const TopologyStats sizes = bars_built ? s.bars_sizes() : s.filter_and_bars();
   stats.triangles = sizes.triangles;
   stats.bars = sizes.bars;
   return stats;
@@ -1125,6 +1178,7 @@ void GpuEngine::set_steps_together(bool on) {
 void GpuEngine::set_replayed_triangles(int64_t triangles) { impl_->replayed_triangles = triangles; }
 void GpuEngine::set_one_block_topology(bool on) { impl_->one_block_topology = on; }
 int64_t GpuEngine::bars_replays() const { return impl_->bars_graph.replays(); }
+int64_t GpuEngine::one_read_retriangulations() const { return impl_->one_read_retriangulations; }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }
 
 void GpuEngine::warm_up() {

@@ -87,6 +87,9 @@ class GpuEngine final : public Engine {
   // (replay_graph.h; 2^18 triangles by default, 0: none), and how many such runs there were.
   void set_replayed_triangles(int64_t triangles);
   int64_t bars_replays() const;
+  // Partial retriangulations whose repair, compaction and bars the host read once (flip_round.h's
+  // OneBlockRepair), for the tests.
+  int64_t one_read_retriangulations() const;
   // For tests: whether a small triangulation's repairs (orientation check and flip rounds), and
   // its bars and CSR, run in one block's launch each (flip_round.h's and launch.h's one-block
   // forms; on by default) or as the kernels one by one and the flip loop.

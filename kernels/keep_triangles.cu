@@ -3,7 +3,6 @@
 // job's repairs drop a sliver or two.
 #include "kernels/cuda_check.h"
 #include "kernels/keep_triangles.h"
-#include "kernels/one_block.cuh"
 #include "kernels/scan.h"
 #include "kernels/triangle_compaction.cuh"
 
@@ -14,25 +13,7 @@ __global__ void __launch_bounds__(kOneBlockThreads)
     keep_in_one_block(DeviceSpan<const uint8_t> keep, DeviceSpan<Tri> tris, DeviceSpan<Tri> nbrs,
                       DeviceSpan<int32_t> position, DeviceSpan<Tri> tris_out,
                       DeviceSpan<Tri> nbrs_out) {
-  __shared__ StripeScanStorage scan;
-  const int64_t m = tris.size;
-  int32_t at[kOneBlockItems];
-#pragma unroll
-  for (int j = 0; j < kOneBlockItems; ++j) at[j] = stripe_row(j) < m ? keep[stripe_row(j)] : 0;
-  const int32_t kept = scan_stripes(at, scan);
-#pragma unroll
-  for (int j = 0; j < kOneBlockItems; ++j)
-    if (stripe_row(j) < m) position[stripe_row(j)] = at[j];
-  __syncthreads();
-#pragma unroll
-  for (int j = 0; j < kOneBlockItems; ++j)
-    if (stripe_row(j) < m && keep[stripe_row(j)])
-      compact_triangle(stripe_row(j), tris, nbrs, keep, position, tris_out, nbrs_out);
-  __syncthreads();
-  for (int64_t i = threadIdx.x; i < kept; i += kOneBlockThreads) {
-    tris[i] = tris_out[i];
-    nbrs[i] = nbrs_out[i];
-  }
+  compact_in_block(keep, tris, nbrs, position, tris_out, nbrs_out);
 }
 
 }  // namespace

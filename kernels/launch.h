@@ -256,8 +256,9 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
 // ---- bars_in_one_block.cu: a small triangulation's bars in one launch ---------------------------
 
 // A small triangulation, of up to this many triangles, takes its repair (flip_round.h), its
-// compaction (keep_triangles.h) and its bars (below) in one launch of one block each
-// (one_block.cuh): a block of 1,024 threads holds it in eight rows a thread.
+// compaction (keep_triangles.h) and its bars (below) in one launch of one block each, the repair
+// and compaction of a partial retriangulation in one (flip_round.h's OneBlockRepair);
+// one_block.cuh: a block of 1,024 threads holds it in eight rows a thread.
 constexpr int64_t kOneBlockRows = 8192;
 // What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
 // one after the centroid filter, with the same bits: for up to kOneBlockRows triangles over fewer
@@ -274,6 +275,7 @@ struct OneBlockBars {
   DeviceSpan<int32_t> csr_entry, csr_other;  // two a bar
   DeviceSpan<Vec2> p_old;                    // #N: set to p, the positions at this triangulation
   int64_t* totals;                           // [0] the bars, [1] the kept triangles
+  const int64_t* live = nullptr;             // the triangles' count on the device (null: #M)
 };
 void launch_bars_in_one_block(const OneBlockBars& a, cudaStream_t stream);
 

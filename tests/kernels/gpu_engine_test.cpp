@@ -688,6 +688,8 @@ TEST(GpuEngine, SmallTopologyInOneBlockIsTheKernelsOwn) {
     const MeshResult b = generate_mesh(c, kernels, nullptr, nullptr);
     EXPECT_EQ(one_block.bars_replays(), 0) << "every triangulation should fit one block";
     EXPECT_GT(kernels.bars_replays(), 0);
+    EXPECT_GT(one_block.one_read_retriangulations(), 0);
+    EXPECT_EQ(kernels.one_read_retriangulations(), 0);
     ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
     EXPECT_TRUE(std::equal(a.mesh.points.begin(), a.mesh.points.end(), b.mesh.points.begin()));
     EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
