@@ -313,26 +313,18 @@ __global__ void __launch_bounds__(kOneBlockThreads) flip_rounds_in_one_block(Fli
   rounds_in_block(bp);
 }
 // What begin_flips, the orientation check and the rounds do one after the other, with block
-// barriers between them.
-__device__ void repair_in_block(const FlipBatch& views, FlipBatch* bp, const OrientationViews& o) {
+// barriers between them; then, where the rounds settled with nothing left to the host, what
+// keep_triangles does; the live count for the filter and the bars that follow.
+__global__ void __launch_bounds__(kOneBlockThreads)
+    repair_and_keep_in_one_block(FlipBatch views, FlipBatch* bp, OneBlockRepair r) {
   if (threadIdx.x == 0) begin_flips_head(views, bp);
   for (int64_t i = threadIdx.x; i < views.tris.size; i += blockDim.x) begin_flips_of(views, i);
   __syncthreads();
   for (int64_t t = threadIdx.x; t < views.tris.size; t += blockDim.x)
-    check_orientation_of(t, views.p, views.tris, o.keep, o.on_boundary, o.alive, views.counters);
+    check_orientation_of(t, views.p, views.tris, r.check.keep, r.check.on_boundary, r.check.alive,
+                         views.counters);
   __syncthreads();
   rounds_in_block(bp);
-}
-__global__ void __launch_bounds__(kOneBlockThreads)
-    repair_in_one_block(FlipBatch views, FlipBatch* bp, OrientationViews o) {
-  repair_in_block(views, bp, o);
-}
-
-// The repair, then, where it settled with nothing left to the host, what keep_triangles does,
-// with a block barrier between them; the live count for the filter and the bars that follow.
-__global__ void __launch_bounds__(kOneBlockThreads)
-    repair_and_keep_in_one_block(FlipBatch views, FlipBatch* bp, OneBlockRepair r) {
-  repair_in_block(views, bp, r.check);
   __syncthreads();
   const TopologyCounters* c = views.counters;
   int64_t m = views.tris.size;
@@ -394,12 +386,6 @@ void launch_flip_loop(FlipBatch* batch, int64_t blocks, cudaStream_t stream) {
 void launch_flip_rounds_in_one_block(FlipBatch* batch, cudaStream_t stream) {
   flip_rounds_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(batch);
   MESHD_CHECK_LAUNCH("flip_rounds_in_one_block");
-}
-
-void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
-                                const OrientationViews& check, cudaStream_t stream) {
-  repair_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(views, batch, check);
-  MESHD_CHECK_LAUNCH("repair_in_one_block");
 }
 
 void launch_repair_and_keep_in_one_block(const FlipBatch& views, FlipBatch* batch,

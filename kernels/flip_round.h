@@ -107,20 +107,17 @@ constexpr int32_t kFlipTailItems = 2 * kBlock;
 // on one SM where the first round's kernels and the loop took six launches and, for the loop,
 // every SM (many small jobs share the device).
 void launch_flip_rounds_in_one_block(FlipBatch* batch, cudaStream_t stream);
-// A small repair whole: launch_begin_flips, launch_check_orientation (launch.h) with `check`'s
-// views (alive: views.walls) and the rounds above, in one launch of one block.
+// A small repair whole, in one launch of one block: launch_begin_flips, launch_check_orientation
+// (launch.h) with `check`'s views (alive: views.walls) and the rounds above; then, where the
+// rounds settled with no fatal triangle and nothing left to the host, the removal of the dropped
+// triangles (keep_triangles.h). *live is then the triangles' count, for a centroid filter and
+// bars launched behind it (launch.h), so that the host reads the counters and the totals once.
+// Where the rounds did not settle, the triangles stay as they are and the host goes on from the
+// counters; the filter and the bars behind it then go for nothing.
 struct OrientationViews {
   DeviceSpan<const uint8_t> keep, on_boundary;
   DeviceSpan<uint8_t> alive;
 };
-void launch_repair_in_one_block(const FlipBatch& views, FlipBatch* batch,
-                                const OrientationViews& check, cudaStream_t stream);
-// A small repair whole as above, and, where it settled with no fatal triangle and nothing left
-// to the host, the removal of its dropped triangles (keep_triangles.h), in one launch of one
-// block; *live is then the triangles' count, for the centroid filter and the bars launched behind
-// it (launch.h), so that the host reads the counters and the totals once. Where the repair did not
-// settle, the triangles stay as they are, and the host goes on from the counters; the filter and
-// the bars behind it then go for nothing.
 struct OneBlockRepair {
   OrientationViews check;
   DeviceSpan<int32_t> position;        // #M: the removal's scan

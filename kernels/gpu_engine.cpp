@@ -515,70 +515,76 @@ struct GpuEngine::Impl {
   // (flip_round.h's OneBlockRepair); `built` tells whether it did, and the bars are built.
   int64_t repair_and_bars(int64_t& dropped, bool& refilled, bool& built) {
     const auto m = static_cast<int64_t>(tris.size());
-    flags.resize(m);
-    position.resize(m);
-    tris_tmp.resize(m);
-    nbrs_tmp.resize(m);
     size_filter(m);
     size_bars(3 * m);
     scale_lagged_ok = false;
-    int64_t* const live = totals.data() + 2;
-    gpu::launch_repair_and_keep_in_one_block(
-        flip_views(flags.span()), flip_batch.data(),
-        {.check = {keep.span(), on_boundary.span(), flags.span()},
-         .position = position.span(),
-         .tris_out = tris_tmp.span(),
-         .nbrs_out = nbrs_tmp.span(),
-         .live = live},
-        stream);
-    bars_in_one_block(live);
+    launch_repair();
+    bars_in_one_block(totals.data() + 2);
     const gpu::TopologyCounters c = read_counters();
-    built = c.fatal == 0 && c.undecided == 0 && c.candidates == 0;
+    built = settled_on_device(c);
     one_read_retriangulations += built;
-    if (!built) {
-      const int64_t flips = finish_repair(c, dropped);
-      return flips >= 0 ? flips : mend_folds(refilled);
-    }
-    dropped = c.dropped;
-    const int64_t alive = m - c.dropped;
-    for (DeviceBuffer<Tri>* t : {&tris, &nbrs}) t->resize(alive);  // the same memory
-    keep.resize(alive);
-    if (c.dropped > 0) flipped_round.resize(alive);  // reset on the device
-    return c.flips;
+    const int64_t flips = finish_repair(c, dropped);
+    if (built) keep.resize(static_cast<int64_t>(tris.size()));  // the same memory
+    return flips >= 0 ? flips : mend_folds(refilled);
   }
 
   // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
   // dropped slivers in `dropped`.
   int64_t repair(int64_t& dropped) {
-    // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped. The
-    // rounds follow at once (flip_round.h), so that a repair reads the device once: they flip
-    // nothing where the check found a fatal one, and leave the dropped ones as walls, removed
-    // once the rounds settle. The same flips as removing them first: their neighbours' edges
-    // are boundary either way, and the rounds' order follows the triangles' order, which the
-    // removal keeps.
-    flags.resize(static_cast<int64_t>(tris.size()));
+    launch_repair();
+    return finish_repair(read_counters(), dropped);
+  }
+  // Turned-over triangles: fatal ones call for a rebuild, expendable ones are dropped. The rounds
+  // follow at once (flip_round.h), so that a repair reads the device once: they flip nothing where
+  // the check found a fatal one, and leave the dropped ones as walls, removed once the rounds
+  // settle. The same flips as removing them first: their neighbours' edges are boundary either
+  // way, and the rounds' order follows the triangles' order, which the removal keeps. A small
+  // triangulation's repair is one launch, which also removes the dropped triangles where the
+  // rounds settle and leaves the triangles' count in totals[2] (flip_round.h's OneBlockRepair).
+  void launch_repair() {
+    const auto m = static_cast<int64_t>(tris.size());
+    flags.resize(m);
     if (small_topology()) {
-      gpu::launch_repair_in_one_block(flip_views(flags.span()), flip_batch.data(),
-                                      {keep.span(), on_boundary.span(), flags.span()}, stream);
+      position.resize(m);
+      tris_tmp.resize(m);
+      nbrs_tmp.resize(m);
+      totals.resize(3);
+      gpu::launch_repair_and_keep_in_one_block(
+          flip_views(flags.span()), flip_batch.data(),
+          {.check = {keep.span(), on_boundary.span(), flags.span()},
+           .position = position.span(),
+           .tris_out = tris_tmp.span(),
+           .nbrs_out = nbrs_tmp.span(),
+           .live = totals.data() + 2},
+          stream);
     } else {
       begin_flips(flags.span());
       gpu::launch_check_orientation(p.span(), tris.span(), keep.span(), on_boundary.span(),
                                     flags.span(), counters.data(), stream);
       run_flip_rounds(true);
     }
-    return finish_repair(read_counters(), dropped);
   }
-  // The repair's rest once its first launch is read: more rounds where they did not settle, the
-  // dropped triangles removed.
+  // Whether a repair's rounds settled with no fatal triangle and nothing left to the host.
+  static bool settled_on_device(const gpu::TopologyCounters& c) {
+    return c.fatal == 0 && c.undecided == 0 && c.candidates == 0;
+  }
+  // The repair's rest once its launch is read: more rounds where they did not settle, the dropped
+  // triangles removed.
   int64_t finish_repair(const gpu::TopologyCounters c, int64_t& dropped) {
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
+    const int64_t alive = static_cast<int64_t>(tris.size()) - c.dropped;
+    if (small_topology() && settled_on_device(c)) {
+      // Removed in the repair's launch, which reset their flipped_round too.
+      for (DeviceBuffer<Tri>* t : {&tris, &nbrs}) t->resize(alive);  // the same memory
+      if (c.dropped > 0) flipped_round.resize(alive);
+      return c.flips;
+    }
     const int64_t flips = settle_flips(c);
     if (flips < 0 || c.dropped == 0) return flips;
     // The check counted every triangle it flagged: no wait for the count.
-    const int64_t alive =
-        gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream,
-                            static_cast<int64_t>(tris.size()) - c.dropped);
+    gpu::keep_triangles(flags.span(), tris, nbrs, {position, tris_tmp, nbrs_tmp}, temp, stream,
+                        alive);
     flipped_round.resize(alive);
     MESHD_CUDA_CHECK(cudaMemsetAsync(flipped_round.data(), 0xff, alive * sizeof(int32_t), stream));
     return flips;
