@@ -1,18 +1,51 @@
 #include "client/result_assembly.h"
 
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
 #include "core/common/error.h"
-#include "core/common/sha256.h"
 #include "meshd/v1/mesh.pb.h"
 
 namespace meshd::cli {
+
+namespace {
+
+constexpr uint64_t kMaxPayload = std::numeric_limits<int32_t>::max();
+
+// Error(kInternal) naming what `flat` indexes unless every entry is below `count`.
+void check_indices(const google::protobuf::RepeatedField<int32_t>& flat, size_t count,
+                   const char* what) {
+  for (const int32_t v : flat) {
+    if (v < 0 || static_cast<size_t>(v) >= count)
+      throw Error(ErrorCode::kInternal, "result", std::string(what) + " index out of range");
+  }
+}
+
+// The whole K-tuples of `flat`, checked against `count` nodes, in one pass and one copy (a
+// million-node mesh has 6M indices).
+template <size_t K>
+std::vector<std::array<int32_t, K>> node_tuples(
+    const google::protobuf::RepeatedField<int32_t>& flat, size_t count) {
+  check_indices(flat, count, "node");
+  std::vector<std::array<int32_t, K>> out(static_cast<size_t>(flat.size()) / K);
+  if (!out.empty()) std::memcpy(out.data(), flat.data(), out.size() * sizeof(out[0]));
+  return out;
+}
+
+}  // namespace
 
 void ResultAssembly::add(const v1::ResultChunk& chunk) {
   if (chunk.index() != next_index_ || chunk.offset() != payload_.size()) {
     throw Error(ErrorCode::kInternal, "result",
                 "chunk " + std::to_string(chunk.index()) + " arrived out of order");
   }
+  // The whole payload's room at once: growing it chunk by chunk copies it again and again.
+  // protobuf parses at most 2 GiB, so no more is reserved whatever the server says.
+  if (chunk.index() == 0) payload_.reserve(std::min<uint64_t>(chunk.total_bytes(), kMaxPayload));
   ++next_index_;
   payload_ += chunk.data();
+  sha_.update(chunk.data());
 }
 
 std::variant<Mesh, TetMesh> ResultAssembly::finish(const v1::Done& done) const {
@@ -21,7 +54,7 @@ std::variant<Mesh, TetMesh> ResultAssembly::finish(const v1::Done& done) const {
                 "received " + std::to_string(payload_.size()) + " bytes, the server sent " +
                     std::to_string(done.result_bytes()));
   }
-  if (sha256_hex(payload_) != done.result_sha256())
+  if (sha_.hex() != done.result_sha256())
     throw Error(ErrorCode::kInternal, "result", "the SHA-256 of the received mesh differs");
   v1::MeshData data;
   if (!data.ParseFromString(payload_))
@@ -30,35 +63,18 @@ std::variant<Mesh, TetMesh> ResultAssembly::finish(const v1::Done& done) const {
   return to_mesh(data);
 }
 
-namespace {
-
-// An index into `count` nodes or groups, or Error(kInternal) naming what it indexes.
-int32_t checked_index(int32_t v, size_t count, const char* what) {
-  if (v < 0 || static_cast<size_t>(v) >= count)
-    throw Error(ErrorCode::kInternal, "result", std::string(what) + " index out of range");
-  return v;
-}
-
-}  // namespace
-
 TetMesh to_tet_mesh(const v1::MeshData& data) {
   TetMesh mesh;
-  const int n = data.points_size() / 3;
-  mesh.points.reserve(n);
-  for (int i = 0; i < n; ++i)
-    mesh.points.push_back({data.points(3 * i), data.points(3 * i + 1), data.points(3 * i + 2)});
-  const auto node = [n](int32_t v) { return checked_index(v, static_cast<size_t>(n), "node"); };
-  for (int i = 0; i + 3 < data.tetrahedra_size(); i += 4) {
-    mesh.tets.push_back({node(data.tetrahedra(i)), node(data.tetrahedra(i + 1)),
-                         node(data.tetrahedra(i + 2)), node(data.tetrahedra(i + 3))});
-  }
-  for (int i = 0; i + 2 < data.boundary_faces_size(); i += 3) {
-    mesh.boundary_faces.push_back({node(data.boundary_faces(i)), node(data.boundary_faces(i + 1)),
-                                   node(data.boundary_faces(i + 2))});
-  }
+  const double* p = data.points().data();
+  mesh.points.resize(static_cast<size_t>(data.points_size()) / 3);
+  for (size_t i = 0; i < mesh.points.size(); ++i)
+    mesh.points[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+  const size_t n = mesh.points.size();
+  mesh.tets = node_tuples<4>(data.tetrahedra(), n);
+  mesh.boundary_faces = node_tuples<3>(data.boundary_faces(), n);
   mesh.boundary_names.assign(data.boundary_names().begin(), data.boundary_names().end());
-  for (int32_t tag : data.boundary_tags())
-    mesh.boundary_tags.push_back(checked_index(tag, mesh.boundary_names.size(), "boundary tag"));
+  check_indices(data.boundary_tags(), mesh.boundary_names.size(), "boundary tag");
+  mesh.boundary_tags.assign(data.boundary_tags().begin(), data.boundary_tags().end());
   if (mesh.boundary_tags.size() != mesh.boundary_faces.size())
     throw Error(ErrorCode::kInternal, "result", "boundary tags and faces differ in number");
   return mesh;
@@ -66,26 +82,15 @@ TetMesh to_tet_mesh(const v1::MeshData& data) {
 
 Mesh to_mesh(const v1::MeshData& data) {
   Mesh mesh;
-  const int n = data.points_size() / 2;
-  mesh.points.reserve(n);
-  for (int i = 0; i < n; ++i) mesh.points.push_back({data.points(2 * i), data.points(2 * i + 1)});
-  auto index = [n](int32_t v) {
-    if (v < 0 || v >= n) throw Error(ErrorCode::kInternal, "result", "node index out of range");
-    return v;
-  };
-  for (int i = 0; i + 2 < data.triangles_size(); i += 3) {
-    mesh.triangles.push_back(
-        {index(data.triangles(i)), index(data.triangles(i + 1)), index(data.triangles(i + 2))});
-  }
-  for (int i = 0; i + 1 < data.boundary_edges_size(); i += 2)
-    mesh.boundary_edges.push_back(
-        {index(data.boundary_edges(i)), index(data.boundary_edges(i + 1))});
-  mesh.boundary_tags.assign(data.boundary_tags().begin(), data.boundary_tags().end());
+  const double* p = data.points().data();
+  mesh.points.resize(static_cast<size_t>(data.points_size()) / 2);
+  for (size_t i = 0; i < mesh.points.size(); ++i) mesh.points[i] = {p[2 * i], p[2 * i + 1]};
+  const size_t n = mesh.points.size();
+  mesh.triangles = node_tuples<3>(data.triangles(), n);
+  mesh.boundary_edges = node_tuples<2>(data.boundary_edges(), n);
   mesh.boundary_names.assign(data.boundary_names().begin(), data.boundary_names().end());
-  for (int32_t tag : mesh.boundary_tags) {
-    if (tag < 0 || tag >= static_cast<int32_t>(mesh.boundary_names.size()))
-      throw Error(ErrorCode::kInternal, "result", "boundary tag out of range");
-  }
+  check_indices(data.boundary_tags(), mesh.boundary_names.size(), "boundary tag");
+  mesh.boundary_tags.assign(data.boundary_tags().begin(), data.boundary_tags().end());
   return mesh;
 }
 

@@ -1,10 +1,12 @@
 // Puts a job's result back together on the client: the chunks in order, checked against the
-// done event's size and SHA-256, parsed into the mesh arrays that core/mesh's writers take.
+// done event's size and SHA-256, parsed into the mesh arrays that core/mesh's writers take. Each
+// chunk is hashed as it arrives, so the check overlaps the transfer.
 #pragma once
 
 #include <string>
 #include <variant>
 
+#include "core/common/sha256.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh3d/tet_mesh.h"
 #include "meshd/v1/mesh.pb.h"
@@ -23,6 +25,7 @@ class ResultAssembly {
 
  private:
   std::string payload_;
+  Sha256 sha_;
   uint32_t next_index_ = 0;
 };
 
