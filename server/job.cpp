@@ -161,11 +161,21 @@ void Job::drop_problem() {
   if (spec_.volume) *spec_.volume = CompiledProblem3{};
 }
 
+void Job::publish_payload(std::shared_ptr<const ResultPayload> payload) {
+  {
+    std::lock_guard lock(mutex_);
+    if (final_state(state_)) return;
+    payload_ = std::move(payload);
+  }
+  wake_subscribers();
+}
+
 void Job::succeed(EncodedResult result) {
   {
     std::lock_guard lock(mutex_);
     if (final_state(state_)) return;
     result_ = std::move(result);
+    payload_ = result_->payload;
     if (started_) {
       result_->done.mutable_stats()->set_queue_wait_s(started_->queue_wait_s());
       result_->done.set_backend(started_->backend());
@@ -304,20 +314,11 @@ NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Statu
       }
       return NextEvent::kEvent;
     }
+    if (next_chunk(cursor, event)) return NextEvent::kEvent;
     return NextEvent::kNone;
   }
   if (state_ == JobState::kSucceeded) {
-    const auto& chunks = result_->chunks;
-    if (cursor.next_chunk < chunks.size()) {
-      const size_t i = cursor.next_chunk++;
-      v1::ResultChunk& c = *event.mutable_result_chunk();
-      c.set_index(static_cast<uint32_t>(i));
-      c.set_count(static_cast<uint32_t>(chunks.size()));
-      c.set_offset(i * result_->chunk_bytes);
-      c.set_total_bytes(result_->total_bytes);
-      c.set_data(chunks[i]);
-      return NextEvent::kEvent;
-    }
+    if (next_chunk(cursor, event)) return NextEvent::kEvent;
     if (!cursor.done_sent) {
       cursor.done_sent = true;
       *event.mutable_done() = result_->done;
@@ -328,6 +329,19 @@ NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Statu
   }
   status = final_status_;
   return NextEvent::kFinished;
+}
+
+bool Job::next_chunk(EventCursor& cursor, v1::MeshEvent& event) const {
+  if (!payload_ || cursor.next_chunk >= payload_->chunk_count()) return false;
+  const size_t i = cursor.next_chunk++;
+  v1::ResultChunk& c = *event.mutable_result_chunk();
+  c.set_index(static_cast<uint32_t>(i));
+  c.set_count(static_cast<uint32_t>(payload_->chunk_count()));
+  c.set_offset(i * payload_->chunk_bytes);
+  c.set_total_bytes(payload_->bytes.size());
+  const std::string_view data = payload_->chunk(i);
+  c.set_data(data.data(), data.size());
+  return true;
 }
 
 }  // namespace meshd

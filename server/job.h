@@ -103,6 +103,9 @@ class Job {
   // A volume's: points #N by 3; tetrahedra #M by 4, or null when unchanged.
   void publish_snapshot(int iteration, const std::vector<Vec3>& points,
                         const std::vector<std::array<int32_t, 4>>* tetrahedra);
+  // The result's payload ahead of succeed(): the streams send its chunks while the worker takes
+  // its checksum. succeed() then carries the same payload.
+  void publish_payload(std::shared_ptr<const ResultPayload> payload);
   void succeed(EncodedResult result);
   // Finishes with a non-OK status: CANCELLED and DEADLINE_EXCEEDED count as cancelled, any
   // other code as failed. No effect on a job already final.
@@ -122,6 +125,8 @@ class Job {
   void wake_subscribers();
 
  private:
+  // The cursor's next chunk of the payload into `event`; false when all were sent. mutex_ held.
+  bool next_chunk(EventCursor& cursor, v1::MeshEvent& event) const;
   // publish_snapshot's body, for either dimension.
   template <typename Point, size_t Corners>
   void store_snapshot(int iteration, const std::vector<Point>& points,
@@ -154,6 +159,7 @@ class Job {
   std::vector<int32_t> snapshot_cells_;  // triangles, or tetrahedra in 3D
   uint64_t snapshot_seq_ = 0;
   uint64_t topology_seq_ = 0;
+  std::shared_ptr<const ResultPayload> payload_;  // published, or the result's
   std::optional<EncodedResult> result_;
 
   std::vector<std::weak_ptr<JobSubscriber>> subscribers_;

@@ -1,8 +1,10 @@
 #include "server/result_encoding.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/common/sha256.h"
+#include "server/mesh_payload.h"
 
 namespace meshd {
 
@@ -79,16 +81,21 @@ v1::Quality to_proto(const TetQualityStats& q) {
   return out;
 }
 
-// The payload cut into chunks, with its size and checksum in `done`.
-EncodedResult chunked(const std::string& payload, size_t chunk_bytes) {
+// The payload with its size and checksum in `done`.
+EncodedResult checksummed(std::shared_ptr<const ResultPayload> payload) {
   EncodedResult out;
-  out.total_bytes = payload.size();
-  out.chunk_bytes = chunk_bytes;
-  for (size_t offset = 0; offset < payload.size() || out.chunks.empty(); offset += chunk_bytes) {
-    out.chunks.push_back(payload.substr(offset, std::min(chunk_bytes, payload.size() - offset)));
-  }
-  out.done.set_result_bytes(out.total_bytes);
-  out.done.set_result_sha256(sha256_hex(payload));
+  out.done.set_result_bytes(payload->bytes.size());
+  out.done.set_result_sha256(sha256_hex(payload->bytes));
+  out.payload = std::move(payload);
+  return out;
+}
+
+template <typename AnyMesh>
+std::shared_ptr<const ResultPayload> payload_of(const AnyMesh& mesh, ThreadPool* pool,
+                                                size_t chunk_bytes) {
+  auto out = std::make_shared<ResultPayload>();
+  out->bytes = mesh_payload(mesh, pool);
+  out->chunk_bytes = chunk_bytes;
   return out;
 }
 
@@ -123,8 +130,26 @@ v1::Quality to_proto(const QualityStats& q) {
 
 }  // namespace
 
-EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes) {
-  EncodedResult out = chunked(to_mesh_data(result.mesh).SerializeAsString(), chunk_bytes);
+size_t ResultPayload::chunk_count() const {
+  return std::max<size_t>(1, (bytes.size() + chunk_bytes - 1) / chunk_bytes);
+}
+
+std::string_view ResultPayload::chunk(size_t i) const {
+  return std::string_view(bytes).substr(i * chunk_bytes, chunk_bytes);
+}
+
+std::shared_ptr<const ResultPayload> encode_payload(const MeshResult& result, ThreadPool* pool,
+                                                    size_t chunk_bytes) {
+  return payload_of(result.mesh, pool, chunk_bytes);
+}
+
+std::shared_ptr<const ResultPayload> encode_payload(const MeshResult3& result, ThreadPool* pool,
+                                                    size_t chunk_bytes) {
+  return payload_of(result.mesh, pool, chunk_bytes);
+}
+
+EncodedResult encode_done(const MeshResult& result, std::shared_ptr<const ResultPayload> payload) {
+  EncodedResult out = checksummed(std::move(payload));
   v1::Done& done = out.done;
   done.set_nodes(static_cast<int64_t>(result.mesh.points.size()));
   done.set_triangles(static_cast<int64_t>(result.mesh.triangles.size()));
@@ -134,8 +159,8 @@ EncodedResult encode_result(const MeshResult& result, size_t chunk_bytes) {
   return out;
 }
 
-EncodedResult encode_result(const MeshResult3& result, size_t chunk_bytes) {
-  EncodedResult out = chunked(to_mesh_data(result.mesh).SerializeAsString(), chunk_bytes);
+EncodedResult encode_done(const MeshResult3& result, std::shared_ptr<const ResultPayload> payload) {
+  EncodedResult out = checksummed(std::move(payload));
   v1::Done& done = out.done;
   done.set_nodes(static_cast<int64_t>(result.mesh.points.size()));
   done.set_tetrahedra(static_cast<int64_t>(result.mesh.tets.size()));

@@ -50,8 +50,11 @@ class Worker {
   void loop();
   void run(Job& job);
   // The job's mesh on this worker's engine, encoded; `t` is when it started.
-  EncodedResult run_plane(const Job& job, Observer& observer, Job::Clock::time_point t);
-  EncodedResult run_volume(const Job& job, Observer& observer, Job::Clock::time_point t);
+  EncodedResult run_plane(Job& job, Observer& observer, Job::Clock::time_point t);
+  // The result's payload, published to the job's streams, and then its done event.
+  template <typename Result>
+  EncodedResult encode_and_publish(Job& job, const Result& result);
+  EncodedResult run_volume(Job& job, Observer& observer, Job::Clock::time_point t);
   bool rebuild_engine();
 
   const std::string name_;

@@ -158,6 +158,52 @@ TEST(JobEvents, AStalledQueueRetellsWithheldPositions) {
 
 // A worker publishes while three readers pull at their own pace: each reader sees queued, then
 // started, then non-decreasing progress, then every chunk once and done.
+// What one reader gets until nothing is new: the kind of each event, and whether it finished.
+std::vector<std::string> read_events(const Job& job, EventCursor& cursor, bool& finished) {
+  std::vector<std::string> kinds;
+  v1::MeshEvent event;
+  grpc::Status status;
+  finished = false;
+  for (NextEvent next; (next = job.next_event(cursor, event, status)) != NextEvent::kNone;) {
+    if (next == NextEvent::kFinished) {
+      finished = true;
+      break;
+    }
+    if (event.has_result_chunk())
+      kinds.push_back("chunk " + event.result_chunk().data());
+    else if (event.has_done())
+      kinds.push_back("done " + event.done().result_sha256());
+    else
+      kinds.push_back(event.has_queued() ? "queued" : event.has_started() ? "started" : "other");
+  }
+  return kinds;
+}
+
+TEST(JobEvents, APublishedPayloadsChunksGoOutBeforeTheDone) {
+  auto job = make_job(1);
+  job->set_queue_position(0, Job::Clock::now());
+  ASSERT_TRUE(job->start(v1::Started()));
+  auto payload = std::make_shared<ResultPayload>(ResultPayload{"abcde", 2});
+  job->publish_payload(payload);
+  EventCursor cursor;
+  bool finished = false;
+  EXPECT_EQ(read_events(*job, cursor, finished),
+            (std::vector<std::string>{"queued", "started", "chunk ab", "chunk cd", "chunk e"}));
+  EXPECT_FALSE(finished);  // no done before succeed
+  EXPECT_EQ(job->state(), JobState::kRunning);
+  EncodedResult result;
+  result.payload = payload;
+  result.done.set_result_sha256("sum");
+  job->succeed(std::move(result));
+  EXPECT_EQ(read_events(*job, cursor, finished), (std::vector<std::string>{"done sum"}));
+  EXPECT_TRUE(finished);
+  // A reader that comes later gets the same chunks, then the done.
+  EventCursor late;
+  EXPECT_EQ(read_events(*job, late, finished),
+            (std::vector<std::string>{"queued", "started", "chunk ab", "chunk cd", "chunk e",
+                                      "done sum"}));
+}
+
 TEST(JobEvents, ReadersSeeAConsistentStreamWhileTheWorkerWrites) {
   auto job = make_job(1);
   job->set_queue_position(0, Job::Clock::now());
@@ -206,9 +252,7 @@ TEST(JobEvents, ReadersSeeAConsistentStreamWhileTheWorkerWrites) {
     if (i % 10 == 0) job->publish_snapshot(i, points, i % 100 == 0 ? &triangles : nullptr);
   }
   EncodedResult result;
-  result.chunks = {"a", "b", "c"};
-  result.total_bytes = 3;
-  result.chunk_bytes = 1;
+  result.payload = std::make_shared<ResultPayload>(ResultPayload{"abc", 1});
   job->succeed(std::move(result));
   r1.join();
   r2.join();
