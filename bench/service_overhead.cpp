@@ -1,7 +1,8 @@
 // service_overhead: what the service adds to a job. The same request is meshed in process (the
 // conversion, compilation and engine alone, as meshbench runs them) and through meshd over
-// loopback gRPC (an in-process server with one warm worker of the same kind, a client with
-// default limits that reads every event, assembles the result and checks its SHA-256). The runs
+// loopback gRPC (an in-process server with one warm worker of the same kind, a client on
+// meshctl's channel settings that reads every event and assembles the result as meshctl does:
+// checked against its size and SHA-256, parsed and converted to the mesh arrays). The runs
 // alternate in pairs; the table gives the median of each, and the overhead as the median of the
 // pairs' differences (which cancels the drift of a shared machine better than a difference of
 // medians).
@@ -17,12 +18,15 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "client/connection.h"
 #include "client/request_file.h"
+#include "client/result_assembly.h"
 #include "core/common/error.h"
-#include "core/common/sha256.h"
 #include "core/distmesh/distmesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "meshd/v1/mesh.pb.h"
@@ -88,12 +92,15 @@ double median(std::vector<double> v) {
 }
 
 // The engine alone: what an in-process caller of core/ pays.
-double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, int64_t& nodes) {
+// `engine_s` is the engine's own part (its t_mesh).
+double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, int64_t& nodes,
+                  double& engine_s) {
   const auto t = Clock::now();
   const meshd::JobSpec spec = meshd::to_job_spec(request);
   const meshd::MeshResult r = meshd::generate_mesh(spec.plane, engine, nullptr, nullptr);
   const double s = seconds_since(t);
   nodes = static_cast<int64_t>(r.mesh.points.size());
+  engine_s = r.stats.t_total;
   return s;
 }
 
@@ -102,10 +109,13 @@ struct ServiceTiming {
   double queued = 0;   // admission: the request checked and the job queued
   double started = 0;  // a worker took the job
   double done = 0;     // the last event
+  double mesh = 0;     // the engine's own time in meshd (the done event's t_mesh)
+  double chunk = 0;    // the result's first chunk
   double total = 0;    // the result parsed and checked
 };
 
-// Through the service: Generate, every event read, the result assembled, parsed and checked.
+// Through the service: Generate, every event read, the result assembled, checked and converted
+// as meshctl does, so that both paths end with the same mesh arrays in memory.
 ServiceTiming through_service(meshd::v1::MeshService::Stub& stub,
                               const meshd::v1::MeshRequest& request, int64_t& nodes) {
   ServiceTiming timing;
@@ -114,26 +124,29 @@ ServiceTiming through_service(meshd::v1::MeshService::Stub& stub,
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(10));
   auto reader = stub.Generate(&context, request);
   meshd::v1::MeshEvent event;
-  std::string payload;
-  std::string sha;
+  meshd::cli::ResultAssembly assembly;
+  std::optional<meshd::Mesh> mesh;
   while (reader->Read(&event)) {
     if (event.has_queued()) timing.queued = seconds_since(t);
     if (event.has_started()) timing.started = seconds_since(t);
-    if (event.has_result_chunk()) payload += event.result_chunk().data();
+    if (event.has_result_chunk()) {
+      if (event.result_chunk().index() == 0) timing.chunk = seconds_since(t);
+      assembly.add(event.result_chunk());
+    }
     if (event.has_done()) {
-      sha = event.done().result_sha256();
       timing.done = seconds_since(t);
+      timing.mesh = event.done().stats().t_mesh();
+      mesh = std::get<meshd::Mesh>(assembly.finish(event.done()));
     }
   }
   const grpc::Status status = reader->Finish();
-  meshd::v1::MeshData mesh;
-  if (!status.ok() || !mesh.ParseFromString(payload) || meshd::sha256_hex(payload) != sha) {
+  if (!status.ok() || !mesh) {
     std::fprintf(stderr, "service_overhead: the service failed: %s\n",
                  status.error_message().c_str());
     std::exit(1);
   }
   timing.total = seconds_since(t);
-  nodes = mesh.points_size() / 2;
+  nodes = static_cast<int64_t>(mesh->points.size());
   return timing;
 }
 
@@ -152,17 +165,20 @@ int main(int argc, char** argv) {
     options.listen = "127.0.0.1:0";
     meshd::MeshServer server(options, {{"bench", kind, factory}});
     server.start();
-    auto stub = meshd::v1::MeshService::NewStub(grpc::CreateChannel(
-        "127.0.0.1:" + std::to_string(server.port()), grpc::InsecureChannelCredentials()));
+    // The channel meshctl opens.
+    auto stub = meshd::v1::MeshService::NewStub(grpc::CreateCustomChannel(
+        "127.0.0.1:" + std::to_string(server.port()), grpc::InsecureChannelCredentials(),
+        meshd::cli::channel_arguments()));
 
     const meshd::v1::MeshRequest base = meshd::read_request_file(opt.request);
     std::printf("request %s on %s, median of %d alternating runs each (%d below 10k nodes)\n\n",
                 opt.request.c_str(), engine->device().c_str(), opt.repeat, 5 * opt.repeat);
     // Where the service's time goes: the events' arrival times (medians), from the call.
     std::printf(
-        "| nodes | in process ms | through meshd ms | overhead ms | overhead %% "
-        "| queued at ms | started at ms | done at ms |\n");
-    std::printf("|---|---|---|---|---|---|---|---|\n");
+        "| nodes | in process ms | engine in process ms | through meshd ms | overhead ms "
+        "| overhead %% | queued at ms | started at ms | engine in meshd ms | first chunk at ms "
+        "| done at ms |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const double target : opt.nodes) {
       meshd::v1::MeshRequest request = base;
       request.set_h0(meshd::h0_for_node_count(meshd::to_problem(base), target));
@@ -170,19 +186,23 @@ int main(int argc, char** argv) {
                                                  ? meshd::v1::JobOptions::BACKEND_GPU
                                                  : meshd::v1::JobOptions::BACKEND_CPU);
       int64_t nodes_a = 0, nodes_b = 0;
-      in_process(engine->engine(), request, nodes_a);  // warm both paths at this size
+      double engine_s = 0;
+      in_process(engine->engine(), request, nodes_a, engine_s);  // warm both paths at this size
       through_service(*stub, request, nodes_b);
-      std::vector<double> a, b, difference, queued, started, done;
+      std::vector<double> a, engine_a, b, difference, queued, started, done, mesh, chunk;
       // Small jobs take milliseconds and vary more: more runs.
       const int repeat = nodes_a < 10'000 ? 5 * opt.repeat : opt.repeat;
       for (int r = 0; r < repeat; ++r) {
-        a.push_back(in_process(engine->engine(), request, nodes_a));
+        a.push_back(in_process(engine->engine(), request, nodes_a, engine_s));
+        engine_a.push_back(engine_s);
         const ServiceTiming timing = through_service(*stub, request, nodes_b);
         b.push_back(timing.total);
         difference.push_back(b.back() - a.back());
         queued.push_back(timing.queued);
         started.push_back(timing.started);
         done.push_back(timing.done);
+        mesh.push_back(timing.mesh);
+        chunk.push_back(timing.chunk);
       }
       if (nodes_a != nodes_b) {
         std::fprintf(stderr, "service_overhead: node counts differ (%lld vs %lld)\n",
@@ -190,9 +210,11 @@ int main(int argc, char** argv) {
         return 1;
       }
       const double ma = median(a), mb = median(b), md = median(difference);
-      std::printf("| %lld | %.2f | %.2f | %.2f | %.1f | %.2f | %.2f | %.2f |\n",
-                  static_cast<long long>(nodes_a), 1e3 * ma, 1e3 * mb, 1e3 * md, 100 * md / ma,
-                  1e3 * median(queued), 1e3 * median(started), 1e3 * median(done));
+      std::printf(
+          "| %lld | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
+          static_cast<long long>(nodes_a), 1e3 * ma, 1e3 * median(engine_a), 1e3 * mb, 1e3 * md,
+          100 * md / ma, 1e3 * median(queued), 1e3 * median(started), 1e3 * median(mesh),
+          1e3 * median(chunk), 1e3 * median(done));
       std::fflush(stdout);
     }
     server.shutdown(std::chrono::milliseconds(0));

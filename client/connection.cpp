@@ -4,9 +4,15 @@
 
 namespace meshd::cli {
 
+grpc::ChannelArguments channel_arguments() {
+  grpc::ChannelArguments arguments;
+  arguments.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES, kResultWindowBytes);
+  return arguments;
+}
+
 Connection::Connection(const ConnectionOptions& options) : options_(options) {
   std::shared_ptr<grpc::ChannelCredentials> credentials;
-  grpc::ChannelArguments arguments;
+  grpc::ChannelArguments arguments = channel_arguments();
   if (options.tls || !options.tls_ca.empty() || !options.tls_cert.empty()) {
     grpc::SslCredentialsOptions ssl;
     if (!options.tls_ca.empty()) ssl.pem_root_certs = read_text_file(options.tls_ca, "--tls-ca");
