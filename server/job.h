@@ -4,7 +4,8 @@
 // failed or cancelled, and never leaves a final state. Its events are kept here and only here:
 // the latest queue position, the start, the latest progress and the latest snapshot (a slow
 // reader gets the newest, never a backlog: memory per job is bounded by one snapshot), and the
-// whole encoded result (chunks are never dropped; the result is kept for retention anyway).
+// whole encoded result (chunks are never dropped; the result is kept for retention anyway),
+// whose chunks go out from when the worker publishes the payload, before its checksum.
 // Each change bumps a sequence number and wakes the subscribers (a queue position at most every
 // kQueuedInterval), which pull with next_event at their own pace through an EventCursor of their
 // own. Thread-safe: one mutex guards the state, and subscribers are woken with it released.
