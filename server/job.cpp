@@ -174,12 +174,12 @@ void Job::succeed(EncodedResult result) {
   {
     std::lock_guard lock(mutex_);
     if (final_state(state_)) return;
-    result_ = std::move(result);
-    payload_ = result_->payload;
+    payload_ = std::move(result.payload);
+    done_ = std::move(result.done);
     if (started_) {
-      result_->done.mutable_stats()->set_queue_wait_s(started_->queue_wait_s());
-      result_->done.set_backend(started_->backend());
-      result_->done.set_device(started_->device());
+      done_->mutable_stats()->set_queue_wait_s(started_->queue_wait_s());
+      done_->set_backend(started_->backend());
+      done_->set_device(started_->device());
     }
     state_ = JobState::kSucceeded;
     finished_at_ = Clock::now();
@@ -238,9 +238,9 @@ v1::JobInfo Job::info() const {
   out.set_iteration(progress_.iteration());
   out.set_nodes(progress_.nodes());
   if (state_ == JobState::kSucceeded) {
-    *out.mutable_done() = result_->done;
-    out.set_nodes(result_->done.nodes());
-    out.set_iteration(result_->done.stats().iterations());
+    *out.mutable_done() = *done_;
+    out.set_nodes(done_->nodes());
+    out.set_iteration(done_->stats().iterations());
   }
   if (state_ == JobState::kFailed || state_ == JobState::kCancelled) {
     out.set_error_code(static_cast<int32_t>(final_status_.error_code()));
@@ -321,7 +321,7 @@ NextEvent Job::next_event(EventCursor& cursor, v1::MeshEvent& event, grpc::Statu
     if (next_chunk(cursor, event)) return NextEvent::kEvent;
     if (!cursor.done_sent) {
       cursor.done_sent = true;
-      *event.mutable_done() = result_->done;
+      *event.mutable_done() = *done_;
       return NextEvent::kEvent;
     }
     status = grpc::Status::OK;

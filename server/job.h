@@ -160,8 +160,8 @@ class Job {
   std::vector<int32_t> snapshot_cells_;  // triangles, or tetrahedra in 3D
   uint64_t snapshot_seq_ = 0;
   uint64_t topology_seq_ = 0;
-  std::shared_ptr<const ResultPayload> payload_;  // published, or the result's
-  std::optional<EncodedResult> result_;
+  std::shared_ptr<const ResultPayload> payload_;  // published ahead, or with the result
+  std::optional<v1::Done> done_;                  // once succeeded
 
   std::vector<std::weak_ptr<JobSubscriber>> subscribers_;
 };
