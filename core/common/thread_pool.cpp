@@ -51,6 +51,11 @@ void ThreadPool::for_chunks(size_t n, size_t chunk,
     return;
   }
   std::unique_lock lock(mutex_);
+  if (job_ != nullptr) {  // another caller's loop holds the workers
+    lock.unlock();
+    for_chunks_in_order(n, chunk, fn);
+    return;
+  }
   job_ = &fn;
   n_ = n;
   chunk_ = chunk;

@@ -25,7 +25,8 @@ class ThreadPool {
   unsigned size() const { return static_cast<unsigned>(workers_.size()) + 1; }
 
   // Calls fn(chunk, begin, end) for consecutive chunks of [0, n) of `chunk` indices each, in
-  // parallel; returns when all are done. Small ranges run on the caller's thread.
+  // parallel; returns when all are done. Small ranges run on the caller's thread, and so do all
+  // the chunks of a call made while another caller's loop runs: threads may share one pool.
   void for_chunks(size_t n, size_t chunk, const std::function<void(size_t, size_t, size_t)>& fn);
 
   static size_t chunk_count(size_t n, size_t chunk) { return (n + chunk - 1) / chunk; }

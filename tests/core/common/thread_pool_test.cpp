@@ -123,5 +123,39 @@ TEST(ThreadPool, WorkIsSharedWhenThereAreManyChunks) {
   EXPECT_TRUE(other_thread_ran.load());
 }
 
+TEST(ThreadPool, CallersThatShareAPoolEachGetEveryIndexOnce) {
+  // Eight threads loop on one pool of 4 at once (the service's admissions): a call made while
+  // another runs takes its chunks on its own thread, and no call sees another's range.
+  ThreadPool pool(4);
+  std::vector<std::thread> callers;
+  std::atomic<int> wrong{0};
+  for (int t = 0; t < 8; ++t) {
+    callers.emplace_back([&, t] {
+      for (int job = 0; job < 200; ++job) {
+        const size_t n = 50 + static_cast<size_t>((job * 7 + t) % 200);
+        std::vector<std::atomic<int>> seen(n);
+        pool.for_chunks(n, 4, [&](size_t, size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) ++seen[i];
+        });
+        for (const auto& s : seen)
+          if (s.load() != 1) ++wrong;
+      }
+    });
+  }
+  for (auto& c : callers) c.join();
+  EXPECT_EQ(wrong.load(), 0);
+}
+
+TEST(ThreadPool, ALoopInsideALoopOfTheSamePoolRunsOnItsCaller) {
+  ThreadPool pool(3);
+  std::atomic<size_t> sum{0};
+  pool.for_chunks(8, 1, [&](size_t, size_t, size_t) {
+    pool.for_chunks(10, 2, [&](size_t, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) sum += i;
+    });
+  });
+  EXPECT_EQ(sum.load(), 8u * 45u);
+}
+
 }  // namespace
 }  // namespace meshd
