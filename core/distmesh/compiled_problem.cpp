@@ -153,7 +153,7 @@ bool needs_sampling(const SizeFieldSpec& spec) {
 // grid. Both grids span `box` at half the finest edge, h0 * (the field's lower bound) / 2; the
 // growth g of the edge h0 * h is g / h0 for h.
 SizeFieldSpec sample_field(const SizeFieldSpec& spec, const Program& geometry, const Box& box,
-                           double h0) {
+                           double h0, ThreadPool* pool) {
   const double cell = 0.5 * h0 * size_field_range(spec).low;
   SizeFieldSpec out = spec;
   for (SizeTerm& term : out.terms) {
@@ -161,7 +161,8 @@ SizeFieldSpec sample_field(const SizeFieldSpec& spec, const Program& geometry, c
       term = feature_size_grid(geometry, *f, box, cell, h0);
   }
   if (limits_gradient(out)) {
-    GridSize limited = limited_size_grid(compile_size_field(out), box, cell, out.gradation / h0);
+    GridSize limited =
+        limited_size_grid(compile_size_field(out), box, cell, out.gradation / h0, pool);
     out.terms.clear();
     out.terms.emplace_back(std::move(limited));
   }
@@ -171,10 +172,10 @@ SizeFieldSpec sample_field(const SizeFieldSpec& spec, const Program& geometry, c
 
 }  // namespace
 
-SizeFieldSpec sampled_size_field(const Problem& problem) {
+SizeFieldSpec sampled_size_field(const Problem& problem, ThreadPool* pool) {
   if (!needs_sampling(problem.size)) return problem.size;
   const Program geometry = compile_geometry(problem.geometry);
-  return sample_field(problem.size, geometry, domain_box(geometry, problem.bbox), problem.h0);
+  return sample_field(problem.size, geometry, domain_box(geometry, problem.bbox), problem.h0, pool);
 }
 
 CompiledProblem compile_problem(const Problem& problem) {
@@ -182,9 +183,10 @@ CompiledProblem compile_problem(const Problem& problem) {
   out.geometry = compile_geometry(problem.geometry);
   out.lipschitz = distance_lipschitz(out.geometry);
   out.bbox = domain_box(out.geometry, problem.bbox);
-  out.size = compile_size_field(needs_sampling(problem.size)
-                                    ? sample_field(problem.size, out.geometry, out.bbox, problem.h0)
-                                    : problem.size);
+  out.size =
+      compile_size_field(needs_sampling(problem.size) ? sample_field(problem.size, out.geometry,
+                                                                     out.bbox, problem.h0, nullptr)
+                                                      : problem.size);
   out.h0 = problem.h0;
   // The engines read h0 as the finest edge: they space the first points h0 apart and thin them
   // by (smallest h / h)^2, as distmesh2d.m does. The API means edge = h0 * h(p) (a uniform 0.5

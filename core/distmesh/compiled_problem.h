@@ -11,6 +11,8 @@
 
 namespace meshd {
 
+class ThreadPool;
+
 struct CompiledProblem {
   Program geometry;
   double lipschitz = 1.0;  // of the geometry's distance (lipschitz.h)
@@ -35,8 +37,8 @@ CompiledProblem compile_problem(const Problem& problem);
 // the whole field becoming one grid term. The result has no gradation and no feature-size term;
 // a field that has neither comes back as it is. The field compile_problem meshes with; the
 // service applies it once, when it converts a request. Throws as compile_problem does for an
-// empty or unbounded domain.
-SizeFieldSpec sampled_size_field(const Problem& problem);
+// empty or unbounded domain. The gradation's samples run over `pool`'s threads when one is given.
+SizeFieldSpec sampled_size_field(const Problem& problem, ThreadPool* pool = nullptr);
 
 // The corners of `geometry`'s final boundary (|d| tiny there): polygon and rectangle vertices
 // where the outline turns by kMinCrossingDegrees or more, and the crossings of two primitives'

@@ -3,11 +3,12 @@
 // field that lies nowhere above the given one and grows by at most g per length unit.
 //
 // On a grid this is a shortest-path problem: h(p) = min over q of h(q) + g * dist(q, p). It is
-// solved in the order of Dijkstra's algorithm from the smallest samples outwards, so each value
-// is settled once and only ever lowered. Paths run along the 16 nearest neighbours of a sample
-// (the 8 adjacent ones and the 8 a knight's move away): a path over them is at most about 3%
-// longer than the straight line (8 neighbours: 8%), so a point-like small size becomes a cone of
-// slope g, rounded to a 16-gon whose sides are at most 3% above the cone.
+// solved by sweeps over the rows, up and down, until no value falls (values are only ever
+// lowered; gradation.cpp says why this ends where Dijkstra's order would). Paths run along the
+// 16 nearest neighbours of a sample (the 8 adjacent ones and the 8 a knight's move away): a path
+// over them is at most about 3% longer than the straight line (8 neighbours: 8%), so a
+// point-like small size becomes a cone of slope g, rounded to a 16-gon whose sides are at most
+// 3% above the cone.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,8 @@
 #include "core/geometry/size_program.h"
 
 namespace meshd {
+
+class ThreadPool;
 
 // Lowers `grid.values` where needed so that between neighbours p, q (as above)
 // h(p) <= h(q) + g * |p - q|. Never raises a value; a field that already complies is unchanged.
@@ -42,6 +45,8 @@ GridSize grid_over(const Box& box, double cell, const std::string& field);
 //   box   finite, non-empty
 //   cell  the wanted spacing, > 0 (the finest edge / 2 for a mesh)
 //   g     the largest growth of h per length unit, > 0
-GridSize limited_size_grid(const SizeProgram& size, const Box& box, double cell, double g);
+//   pool  threads for the samples, or null for the caller's thread alone
+GridSize limited_size_grid(const SizeProgram& size, const Box& box, double cell, double g,
+                           ThreadPool* pool = nullptr);
 
 }  // namespace meshd

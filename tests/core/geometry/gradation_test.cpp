@@ -7,8 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <queue>
 #include <random>
+#include <utility>
+#include <vector>
 
+#include "core/common/thread_pool.h"
 #include "core/distmesh/compiled_problem.h"
 #include "core/geometry/compile.h"
 #include "core/geometry/size_eval.cuh"
@@ -89,6 +95,55 @@ TEST(Gradation, LeavesACompliantFieldAloneAndIsIdempotent) {
     ASSERT_NEAR(twice.values[k], once.values[k], 1e-6 * once.values[k]);
 }
 
+// The settling of gradation.h in Dijkstra's order, from the smallest samples outwards, each
+// value settled once: the reference that the sweeps must match bit for bit.
+std::vector<float> settled_in_dijkstras_order(const GridSize& grid, double g) {
+  constexpr std::pair<int, int> kSteps[] = {{1, 0},  {-1, 0},  {0, 1},  {0, -1}, {1, 1},  {1, -1},
+                                            {-1, 1}, {-1, -1}, {1, 2},  {1, -2}, {-1, 2}, {-1, -2},
+                                            {2, 1},  {2, -1},  {-2, 1}, {-2, -1}};
+  const int nx = int(grid.nx), ny = int(grid.ny);
+  std::vector<double> h(grid.values.begin(), grid.values.end());
+  using Entry = std::pair<double, int64_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int64_t k = 0; k < int64_t(h.size()); ++k) queue.push({h[k], k});
+  while (!queue.empty()) {
+    const auto [value, k] = queue.top();
+    queue.pop();
+    if (value > h[k]) continue;
+    for (auto [di, dj] : kSteps) {
+      const int a = int(k % nx) + di, b = int(k / nx) + dj;
+      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+      const double bound = value + g * std::hypot(di * grid.spacing.x, dj * grid.spacing.y);
+      const int64_t n = int64_t(b) * nx + a;
+      if (bound < h[n]) queue.push({h[n] = bound, n});
+    }
+  }
+  std::vector<float> out(grid.values);
+  for (size_t k = 0; k < h.size(); ++k) out[k] = std::min(out[k], float(h[k]));
+  return out;
+}
+
+TEST(Gradation, TheSweepsEndWhereDijkstrasOrderEnds) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 12; ++trial) {
+    const uint32_t nx = 5 + rng() % 90, ny = 3 + rng() % 70;
+    const Vec2 spacing{0.01 + 0.1 * (rng() % 100) / 100.0, 0.01 + 0.1 * (rng() % 100) / 100.0};
+    GridSize grid = constant_grid(nx, ny, spacing, 0);
+    std::uniform_real_distribution<float> value(1.0f, 20.0f);
+    if (trial % 3 == 0) {
+      for (float& v : grid.values) v = value(rng);  // noise everywhere
+    } else {
+      // A plateau with a few small sizes: the cones of a shoreline field.
+      for (float& v : grid.values) v = 20.0f;
+      for (int k = 0; k < 1 + trial; ++k) grid.values[rng() % grid.values.size()] = value(rng);
+    }
+    const double g = 0.2 + 5.0 * (rng() % 100) / 100.0;
+    const std::vector<float> want = settled_in_dijkstras_order(grid, g);
+    limit_gradient(grid, g);
+    ASSERT_EQ(grid.values, want) << "trial " << trial << ": " << nx << " x " << ny;
+  }
+}
+
 TEST(Gradation, SamplesTheFieldOverTheBoxWithinTheBudget) {
   SizeFieldSpec spec;
   spec.terms.push_back(UniformSize{2.0});
@@ -105,6 +160,23 @@ TEST(Gradation, SamplesTheFieldOverTheBoxWithinTheBudget) {
   EXPECT_LE(double(capped.nx) * capped.ny, kMaxGradationSamples);
   EXPECT_GE(capped.ny, 2u);
   EXPECT_NEAR(capped.origin.x + (capped.nx - 1) * capped.spacing.x, 1e4, 1e-6);
+}
+
+// The samples spread over threads land where the caller's thread alone puts them.
+TEST(Gradation, SamplesOverThreadsAsOnOne) {
+  SizeFieldSpec spec;
+  DistanceSize ring;
+  ring.shape = Shape{Circle{{1, 0.5}, 0.3}, "", ""};
+  ring.h_min = 0.5;
+  ring.slope = 4;
+  ring.h_max = 3;
+  spec.terms.push_back(ring);
+  const SizeProgram size = compile_size_field(spec);
+  const Box box{{0, 0}, {3, 2}};
+  const GridSize alone = limited_size_grid(size, box, 0.005, 0.8);  // 601 x 401: 15 pieces
+  ThreadPool pool(4);
+  const GridSize shared = limited_size_grid(size, box, 0.005, 0.8, &pool);
+  EXPECT_EQ(shared.values, alone.values);
 }
 
 // Through compile_problem: a distance term that is small only at a point (0.25 there, 1 a grid
