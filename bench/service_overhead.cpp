@@ -91,12 +91,13 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// The engine alone: what an in-process caller of core/ pays.
+// The engine alone: what an in-process caller of core/ pays, the request's node estimate
+// sampled over the engine's host threads as meshd's admission samples it over the host's.
 // `engine_s` is the engine's own part (its t_mesh).
 double in_process(meshd::Engine& engine, const meshd::v1::MeshRequest& request, int64_t& nodes,
                   double& engine_s) {
   const auto t = Clock::now();
-  const meshd::JobSpec spec = meshd::to_job_spec(request);
+  const meshd::JobSpec spec = meshd::to_job_spec(request, {}, engine.host_pool());
   const meshd::MeshResult r = meshd::generate_mesh(spec.plane, engine, nullptr, nullptr);
   const double s = seconds_since(t);
   nodes = static_cast<int64_t>(r.mesh.points.size());

@@ -84,7 +84,7 @@ std::string JobManager::new_id() {
 std::shared_ptr<Job> JobManager::submit(const v1::MeshRequest& request,
                                         Job::Clock::time_point deadline) {
   if (!accepting_.load()) throw Error(ErrorCode::kUnavailable, "", "the server is shutting down");
-  JobSpec spec = to_job_spec(request, options_.limits);
+  JobSpec spec = to_job_spec(request, options_.limits, &admission_pool_);
   if (spec.options.timeout_s > 0) {
     const auto timeout = std::chrono::duration_cast<Job::Clock::duration>(
         std::chrono::duration<double>(spec.options.timeout_s));

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/common/thread_pool.h"
 #include "meshd/v1/service.pb.h"
 #include "server/job_queue.h"
 #include "server/metrics.h"
@@ -82,6 +83,9 @@ class JobManager {
   std::string new_id();
 
   const JobManagerOptions options_;
+  // One thread per hardware thread for the node estimates of new requests (a long polygon's
+  // takes milliseconds); admissions that find it busy survey on their own threads.
+  ThreadPool admission_pool_;
   Metrics& metrics_;
   JobQueue queue_;
   std::vector<std::unique_ptr<Worker>> workers_;

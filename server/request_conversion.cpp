@@ -423,10 +423,12 @@ void check_thickness(const Problem& problem, const CompiledProblem& compiled, do
 }
 
 // `compiled`: compile_problem(problem), which throws on its own for an empty domain, a missing
-// bbox or a fixed point outside.
-double check_node_count(const Problem& problem, const CompiledProblem& compiled,
-                        const ConversionLimits& limits) {
-  const DomainSurvey survey = survey_domain(compiled);
+// bbox or a fixed point outside. Keeps the survey's integral in `compiled`, so that the engine
+// does not survey the domain again.
+double check_node_count(const Problem& problem, CompiledProblem& compiled,
+                        const ConversionLimits& limits, ThreadPool* pool) {
+  const DomainSurvey survey = survey_domain(compiled, pool);
+  compiled.inverse_size_integral = survey.inverse_size;
   const double nodes = survey.nodes;
   const double h0 = problem.h0;
   if (!(nodes >= 3)) {
@@ -504,8 +506,9 @@ JobOptions job_options(const v1::JobOptions& in, double estimated_nodes, bool vo
 
 namespace {
 
-// The request's fields, each checked, as a Problem (its node count not yet checked).
-Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits) {
+// The request's fields, each checked, as a Problem (its node count not yet checked); `pool` as
+// to_job_spec's.
+Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits, ThreadPool* pool) {
   Problem problem;
 
   if (request.has_volume()) {
@@ -536,7 +539,7 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits) 
   }
 
   // Once here, so that the worker meshes the sampled grids without sampling the field again.
-  problem.size = sampled_size_field(problem);
+  problem.size = sampled_size_field(problem, pool);
 
   problem.auto_corners = request.has_auto_corners() ? request.auto_corners() : true;
   problem.params = params(request);
@@ -547,19 +550,21 @@ Problem convert(const v1::MeshRequest& request, const ConversionLimits& limits) 
 }  // namespace
 
 Problem to_problem(const v1::MeshRequest& request, const ConversionLimits& limits) {
-  Problem problem = convert(request, limits);
-  check_node_count(problem, compile_problem(problem), limits);
+  Problem problem = convert(request, limits, nullptr);
+  CompiledProblem compiled = compile_problem(problem);
+  check_node_count(problem, compiled, limits, nullptr);
   return problem;
 }
 
-JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits) {
+JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits,
+                    ThreadPool* pool) {
   JobSpec spec;
   if (request.has_volume()) {
     spec.volume = to_compiled_problem3(request, limits, spec.estimated_nodes);
   } else {
-    const Problem problem = convert(request, limits);
+    const Problem problem = convert(request, limits, pool);
     spec.plane = compile_problem(problem);
-    spec.estimated_nodes = check_node_count(problem, spec.plane, limits);
+    spec.estimated_nodes = check_node_count(problem, spec.plane, limits, pool);
   }
   spec.options =
       job_options(request.options(), spec.estimated_nodes, spec.volume.has_value(), limits);

@@ -17,6 +17,8 @@
 
 namespace meshd {
 
+class ThreadPool;
+
 // What one request may ask for. The defaults are the ones quoted in the proto comments; a
 // server may lower or raise them (a deployment with small GPUs lowers max_nodes).
 struct ConversionLimits {
@@ -64,6 +66,8 @@ Shape to_shape(const v1::Shape& shape, const ConversionLimits& limits, const std
 // to_problem (to_problem3, volume_conversion.h, for a request with a volume), then the
 // service's options (options.*) with their ranges. Snapshots of a request
 // estimated above the snapshot limit are RESOURCE_EXHAUSTED naming "options.snapshot_every".
-JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits = {});
+// The node estimate's samples, and a gradation's, run over `pool`'s threads when one is given.
+JobSpec to_job_spec(const v1::MeshRequest& request, const ConversionLimits& limits = {},
+                    ThreadPool* pool = nullptr);
 
 }  // namespace meshd

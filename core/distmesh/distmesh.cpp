@@ -31,12 +31,12 @@ constexpr double kCoarsestNodes = 2000.0;
 // nodes and had 21.5k), came out with 2.8M nodes against an estimate of 0.67M.
 constexpr double kNodesPerFixedNode = 4.0;
 
-std::vector<CompiledProblem> multilevel_problems(const CompiledProblem& problem) {
+std::vector<CompiledProblem> multilevel_problems(const CompiledProblem& problem, ThreadPool* pool) {
   int coarsenings = 0;
   const Params::Multilevel mode = problem.params.multilevel;
   const bool on = mode == Params::Multilevel::kOn ||
                   (mode == Params::Multilevel::kAuto && !problem.size.uniform());
-  const double nodes = on ? estimate_node_count(problem) : 0.0;
+  const double nodes = on ? estimate_node_count(problem, pool) : 0.0;
   const auto fixed = static_cast<double>(problem.fixed_points.size());
   const double fewest = std::max(kCoarsestNodes, kNodesPerFixedNode * fixed);
   for (double n = nodes; n >= 4.0 * fewest; n /= 4.0) ++coarsenings;
@@ -61,7 +61,7 @@ class Loop {
     RunStats& s = stats_;
 
     // Multilevel: levels[0] is the coarsest (h0 * 2^L), levels[L] the problem itself.
-    const std::vector<CompiledProblem> levels = multilevel_problems(problem_);
+    const std::vector<CompiledProblem> levels = multilevel_problems(problem_, engine_.host_pool());
     for (size_t level = 0; level < levels.size(); ++level) {
       current_ = &levels[level];
       auto t = Clock::now();

@@ -10,8 +10,10 @@
 
 #include "client/request_file.h"
 #include "core/common/error.h"
-#include "tests/server/conversion_expectations.h"
+#include "core/common/thread_pool.h"
+#include "core/distmesh/compiled_problem.h"
 #include "core/distmesh/node_estimate.h"
+#include "tests/server/conversion_expectations.h"
 
 namespace meshd {
 namespace {
@@ -598,6 +600,24 @@ TEST(RequestConversionExamples, G5GradedHole) {
     EXPECT_NEAR(h, std::min(4 * r - 1, 2.0), 1e-12) << r;
   }
   expect_ci_size(p);
+}
+
+// The job's compiled problem keeps the survey that checked its node count, so that the worker's
+// engine counts its multilevel levels without sampling the domain again; the survey over a pool
+// gives the same estimate as on the caller's thread alone.
+TEST(RequestConversionExamples, AJobKeepsItsSurvey) {
+  const v1::MeshRequest request =
+      read_request_file(std::string(MESHD_SOURCE_DIR) + "/examples/airfoil_channel.textproto");
+  const JobSpec alone = to_job_spec(request);
+  ThreadPool pool(3);
+  const JobSpec shared = to_job_spec(request, {}, &pool);
+  EXPECT_EQ(shared.estimated_nodes, alone.estimated_nodes);
+  EXPECT_GT(alone.plane.inverse_size_integral, 0.0);
+  EXPECT_EQ(shared.plane.inverse_size_integral, alone.plane.inverse_size_integral);
+  EXPECT_EQ(estimate_node_count(alone.plane), alone.estimated_nodes);
+  CompiledProblem unsurveyed = alone.plane;
+  unsurveyed.inverse_size_integral = 0.0;
+  EXPECT_EQ(estimate_node_count(unsurveyed), alone.estimated_nodes);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "core/common/error.h"
+#include "core/common/thread_pool.h"
+#include "core/distmesh/compiled_problem.h"
 #include "tests/core/distmesh/benchmark_geometries.h"
 
 namespace meshd {
@@ -106,6 +108,38 @@ TEST(NodeEstimate, EmptyDomainIsAnError) {
     EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
     EXPECT_EQ(e.field(), "geometry");
   }
+}
+
+// The survey's samples run over threads and add up in one order: the same bits on any number
+// of threads, graded (G5) or not (G3's polygon).
+TEST(NodeEstimate, ASurveyOverThreadsGivesTheSameBitsAsOneThread) {
+  for (const std::string id : {"G3", "G5"}) {
+    for (double h0 : {0.1, 0.003}) {
+      const CompiledProblem c = compile_problem(testing::benchmark_problem(id, h0));
+      const DomainSurvey alone = survey_domain(c);
+      for (unsigned threads : {2u, 3u, 8u}) {
+        ThreadPool pool(threads);
+        const DomainSurvey shared = survey_domain(c, &pool);
+        EXPECT_EQ(shared.nodes, alone.nodes) << id << " " << h0 << " " << threads;
+        EXPECT_EQ(shared.depth, alone.depth) << id << " " << h0 << " " << threads;
+        EXPECT_EQ(shared.inverse_size, alone.inverse_size) << id << " " << h0 << " " << threads;
+      }
+    }
+  }
+}
+
+// A surveyed problem keeps its integral, which holds for any h0: the estimate reads it instead
+// of sampling the domain again.
+TEST(NodeEstimate, ASurveyedProblemCountsItsNodesFromItsIntegral) {
+  CompiledProblem c = compile_problem(testing::benchmark_problem("G5", 0.05));
+  const DomainSurvey survey = survey_domain(c);
+  EXPECT_EQ(estimate_node_count(c), survey.nodes);
+  c.inverse_size_integral = survey.inverse_size;
+  EXPECT_EQ(estimate_node_count(c), survey.nodes);
+  c.h0 *= 2;
+  EXPECT_EQ(estimate_node_count(c), survey.nodes / 4);
+  c.inverse_size_integral = 3 * survey.inverse_size;  // not sampled again: the count follows it
+  EXPECT_NEAR(estimate_node_count(c), 0.75 * survey.nodes, 1e-12 * survey.nodes);
 }
 
 }  // namespace
