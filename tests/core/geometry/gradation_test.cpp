@@ -164,13 +164,8 @@ TEST(Gradation, SamplesTheFieldOverTheBoxWithinTheBudget) {
 
 // The samples spread over threads land where the caller's thread alone puts them.
 TEST(Gradation, SamplesOverThreadsAsOnOne) {
-  SizeFieldSpec spec;
-  DistanceSize ring;
-  ring.shape = Shape{Circle{{1, 0.5}, 0.3}, "", ""};
-  ring.h_min = 0.5;
-  ring.slope = 4;
-  ring.h_max = 3;
-  spec.terms.push_back(ring);
+  SizeFieldSpec spec;  // 0.5 at a circle, growing 4 per length unit up to 3
+  spec.terms.push_back(DistanceSize{Shape{Circle{{1, 0.5}, 0.3}, "", ""}, 0.5, 4, 3});
   const SizeProgram size = compile_size_field(spec);
   const Box box{{0, 0}, {3, 2}};
   const GridSize alone = limited_size_grid(size, box, 0.005, 0.8);  // 601 x 401: 15 pieces
