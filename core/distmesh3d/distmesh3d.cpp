@@ -13,7 +13,7 @@
 #include "core/distmesh3d/settle_surface3d.h"
 #include "core/distmesh3d/step3d.h"
 #include "core/distmesh3d/topology3d.h"
-#include "core/mesh3d/tet_quality.cuh"
+#include "core/mesh3d/tet_validity.h"
 
 namespace meshd {
 namespace {
@@ -27,10 +27,6 @@ constexpr double kCoincidentRelative = 0.01;
 // Each move (a removal and an insertion) runs on one thread, hence the count's cap.
 constexpr double kPartialShare = 0.02;
 constexpr size_t kPartialMost = 1000;
-// Radius ratio below which a tetrahedron is flat: q grows as (6 V / longest edge^3)^2, so this
-// takes the ones the validity check calls degenerate (6 V <= 1e-12 longest edge^3) and no more
-// than those under about 1e-10.
-constexpr double kFlatQuality = 1e-20;
 // The share of a repair's tetrahedra that may lie inside turned over (and go, see `serves`): the
 // repairs of a 1,800-node ball (9k tetrahedra) left 0 or 6 such, or 66 to 377 where boundary
 // nodes had slid far, which this refuses.
@@ -244,12 +240,13 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
   // The final nodes' own tetrahedra: the last steps moved them since the last triangulation.
   engine->sync();
   triangulate(nodes, stats, false, std::nullopt, topology);
-  // A tetrahedron of four coplanar nodes that the centroid filter kept has no volume and, when
-  // its nodes are fixed (samples on a plane through the interior, as a polyhedron whose surface
-  // crosses itself makes), nothing can mend it: it goes.
+  // A tetrahedron of four coplanar or collinear nodes that the centroid filter kept has no
+  // volume and, when its nodes are fixed (samples on a plane through the interior, as a
+  // polyhedron whose surface crosses itself makes, or along a straight edge), nothing can mend
+  // it: what the validity check would refuse goes.
   std::erase_if(topology.tets, [&](const std::array<int32_t, 4>& t) {
     const auto& p = nodes.points;
-    return !(oriented_tet_radius_ratio(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) > kFlatQuality);
+    return degenerate_tet(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
   });
   const auto relaxed = Clock::now();
   // The finish: the surface onto the boundary, then the slivers the forces leave.

@@ -151,6 +151,18 @@ double six_volume(const TetMesh& mesh, const Tet& t) {
 
 }  // namespace
 
+double relative_six_volume(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const Vec3 corners[4] = {a, b, c, d};
+  double longest_sq = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    for (int k = j + 1; k < 4; ++k) {
+      const Vec3 e = corners[k] - corners[j];
+      longest_sq = std::max(longest_sq, dot(e, e));
+    }
+  }
+  return dot(b - a, cross(c - a, d - a)) / (longest_sq * std::sqrt(longest_sq));
+}
+
 TetValidityReport check_tet_validity(const TetMesh& mesh, double volume_tolerance) {
   TetValidityReport report;
   const size_t num_points = mesh.points.size();
@@ -199,22 +211,13 @@ TetValidityReport check_tet_validity(const TetMesh& mesh, double volume_toleranc
   for (size_t i = 0; i < mesh.tets.size(); ++i) {
     const Tet& t = mesh.tets[i];
     if (!all_in_range(t, num_points)) continue;
-    double longest_sq = 0.0;
-    for (int j = 0; j < 4; ++j) {
-      for (int k = j + 1; k < 4; ++k) {
-        const Vec3 e = mesh.points[t[k]] - mesh.points[t[j]];
-        longest_sq = std::max(longest_sq, dot(e, e));
-      }
-    }
-    const double longest_cubed = longest_sq * std::sqrt(longest_sq);
-    const double volume6 = six_volume(mesh, t);
-    // Written so that NaN fails too.
-    if (volume6 > volume_tolerance * longest_cubed) continue;
+    const auto& p = mesh.points;
+    if (!degenerate_tet(p[t[0]], p[t[1]], p[t[2]], p[t[3]], volume_tolerance)) continue;
     if (report.num_inverted++ == 0) {
       report.first_inverted = static_cast<int64_t>(i);
       std::ostringstream s;
-      s << "tetrahedron " << i << " " << corners_text(t)
-        << ", 6 volume / longest edge^3 = " << volume6 / longest_cubed;
+      s << "tetrahedron " << i << " " << corners_text(t) << ", 6 volume / longest edge^3 = "
+        << relative_six_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
       first = s.str();
     }
   }

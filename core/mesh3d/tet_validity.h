@@ -20,6 +20,19 @@ namespace meshd {
 // tetrahedron has 6 V / longest^3 = 0.71; a flat sliver with q = 1e-4 still has about 3e-5).
 constexpr double kDefaultVolumeTolerance = 1e-12;
 
+// 6 V / (longest edge)^3 of the tetrahedron abcd: 0.71 for the regular one, negative when it is
+// turned over, NaN when its corners coincide or a coordinate is not finite.
+double relative_six_volume(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
+
+// Whether abcd is turned over or degenerate by check_tet_validity's rule (NaN included), so that
+// an engine can drop what the check would refuse. Flat by a radius ratio near 0 is not the same:
+// four corners nearly on a line (samples along a straight edge) keep q about as large as
+// 6 V / longest^3, where four nearly on a plane have q about its square.
+inline bool degenerate_tet(Vec3 a, Vec3 b, Vec3 c, Vec3 d,
+                           double volume_tolerance = kDefaultVolumeTolerance) {
+  return !(relative_six_volume(a, b, c, d) > volume_tolerance);
+}
+
 struct TetValidityReport {
   // One human-readable line per kind of defect; empty when the mesh is valid.
   std::vector<std::string> problems;

@@ -8,6 +8,7 @@
 
 #include "core/common/error.h"
 #include "core/mesh3d/tet_boundary.h"
+#include "core/mesh3d/tet_quality.cuh"
 #include "tests/core/mesh3d/structured_tet_mesh.h"
 
 namespace meshd {
@@ -87,6 +88,28 @@ TEST(CheckTetValidity, AFlatTetrahedronIsDegenerateAndAThinOneIsNot) {
   mesh.points[3] = {0.3, 0.3, 1e-6};  // a thin but valid sliver
   EXPECT_EQ(check_tet_validity(mesh).num_inverted, 0);
   EXPECT_EQ(check_tet_validity(mesh, 1e-3).num_inverted, 1);
+}
+
+// Four corners near one line (samples along a straight edge): the radius ratio stays about as
+// large as 6 V / longest^3, far above a threshold that takes the flat ones near a plane, so an
+// engine's filter must ask degenerate_tet, the check's own rule.
+TEST(CheckTetValidity, ANeedleIsDegenerateByTheRuleEngineFiltersShare) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{2, 1e-8, 0}, d{3, 0, 1e-8};
+  const double ratio = relative_six_volume(a, b, c, d);
+  EXPECT_GT(ratio, 0.0);
+  EXPECT_LT(ratio, 1e-12);
+  EXPECT_GT(oriented_tet_radius_ratio(a, b, c, d), 1e-20);
+  EXPECT_TRUE(degenerate_tet(a, b, c, d));
+  TetMesh mesh = one_tet();
+  mesh.points = {a, b, c, d};
+  EXPECT_EQ(check_tet_validity(mesh).num_inverted, 1);
+
+  const Vec3 e1{1, 0, 0}, e2{0, 1, 0}, e3{0, 0, 1};
+  EXPECT_NEAR(relative_six_volume(a, e1, e2, e3), 1.0 / (2.0 * std::sqrt(2.0)), 1e-15);
+  EXPECT_FALSE(degenerate_tet(a, e1, e2, e3));
+  EXPECT_TRUE(degenerate_tet(a, e2, e1, e3));  // turned over
+  EXPECT_TRUE(degenerate_tet(a, a, e2, e3));   // two corners coincide
+  EXPECT_TRUE(degenerate_tet(a, a, a, a));     // NaN
 }
 
 TEST(CheckTetValidity, AnIndexOutOfRangeIsReportedWithoutCrashing) {
