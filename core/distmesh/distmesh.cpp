@@ -10,6 +10,7 @@
 #include "core/distmesh/assemble_mesh.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
+#include "core/distmesh/removal_limit.h"
 #include "core/distmesh/trapped_nodes.h"
 
 namespace meshd {
@@ -140,11 +141,6 @@ class Loop {
 
  private:
   static constexpr int kCleanupRounds = 3;
-  // A density check or a clean-up round that would remove more than this share of the free nodes
-  // at once is not meeting a local excess: the L0 scale is skewed (in a domain a few edges thick
-  // long sliver bars inflate it; so does an fscale near the top of its range), and the removal
-  // would empty the mesh (tests/fuzz/FINDINGS.md). It is skipped.
-  static constexpr double kMaxRemovedShare = 0.25;
   static constexpr int kCleanupIterations = 200;
   // The termination test's constants (step_rule.cuh).
   static constexpr double kMaxMoveFactor = 10.0;
@@ -156,7 +152,7 @@ class Loop {
   int64_t max_removed() const {
     const auto free_nodes =
         engine_.node_count() - static_cast<int64_t>(current_->fixed_points.size());
-    return static_cast<int64_t>(kMaxRemovedShare * static_cast<double>(free_nodes));
+    return most_removed_at_once(free_nodes);
   }
 
   void triangulate(bool full) {

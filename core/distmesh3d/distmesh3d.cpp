@@ -7,6 +7,7 @@
 #include "core/common/error.h"
 #include "core/delaunay/delaunay3d.h"
 #include "core/delaunay/flip_repair3.h"
+#include "core/distmesh/removal_limit.h"
 #include "core/distmesh3d/cpu_engine3.h"
 #include "core/distmesh3d/initial_points3d.h"
 #include "core/distmesh3d/optimize_slivers3d.h"
@@ -223,10 +224,13 @@ Relaxed3 distmesh3d(const Domain3& domain, double h0, const Params3& params, Thr
       break;
     }
     retriangulate = rule.needs_triangulation(step.max_drift);
-    // 6. Density control on this step's bars: both ends of a bar far shorter than it should be.
+    // 6. Density control on this step's bars: both ends of a bar far shorter than it should be,
+    // unless that is too many at once (removal_limit.h).
     if (params.density_control_interval > 0 && iteration % params.density_control_interval == 0) {
       const std::vector<int32_t> crowded = engine->crowded_nodes();
-      if (!crowded.empty()) {
+      const auto free_nodes = static_cast<int64_t>(nodes.points.size()) - nodes.fixed;
+      if (!crowded.empty() &&
+          static_cast<int64_t>(crowded.size()) <= most_removed_at_once(free_nodes)) {
         engine->sync();
         remove_nodes3d(nodes, crowded);
         engine->forget_triangulation();
