@@ -6,6 +6,7 @@
 
 #include "core/common/colour_groups.h"
 #include "core/common/thread_pool.h"
+#include "core/distmesh/pattern_search.h"
 #include "core/distmesh/star_table.h"
 #include "core/geometry/projection.cuh"
 #include "core/mesh/boundary.h"
@@ -173,7 +174,8 @@ class Optimizer {
     const Vec2 start = p_[v];
     double step = 0.25 * mean_star_edge(v);
     for (int h = 0; h < kStepHalvings; ++h, step *= 0.5) {
-      for (bool improved = true; improved;) {
+      bool improved = true;
+      for (int moves = 0; improved && moves < kMovesPerStepLength; ++moves) {
         improved = false;
         Vec2 dirs[8];
         int n_dirs = 0;

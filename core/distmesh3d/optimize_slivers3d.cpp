@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/distmesh/pattern_search.h"
 #include "core/distmesh3d/projection3d.h"
 #include "core/mesh3d/tet_boundary.h"
 #include "core/mesh3d/tet_quality.cuh"
@@ -17,10 +18,6 @@ namespace {
 // against 0.50-0.57), for 35-45% of the finish's time.
 constexpr int kPasses = 4;
 constexpr int kStepHalvings = 6;
-// Moves at one step length at most: along a crease the projection can shorten a step to a creep
-// that still improves the star (a rim node of a coarse graded cylinder crept 3e-10 a move, for
-// millions of moves); sound moves at a length take far fewer, since each travels the length.
-constexpr int kMovesPerLength = 8;
 // Nodes per task in a parallel loop: a boundary node's search costs a few hundred distances.
 constexpr size_t kNodesPerChunk = 16;
 constexpr size_t kTetsPerChunk = 4096;
@@ -131,7 +128,7 @@ class SliverOptimizer {
     double length = 0.25 * stars_.mean_edge(v, p_, t_);
     for (int h = 0; h < kStepHalvings; ++h, length *= 0.5) {
       bool improved = true;
-      for (int moves = 0; improved && moves < kMovesPerLength; ++moves) {
+      for (int moves = 0; improved && moves < kMovesPerStepLength; ++moves) {
         improved = false;
         Vec3 dirs[14];
         int n_dirs = 0;
