@@ -21,7 +21,7 @@ namespace meshd {
 constexpr double kDefaultVolumeTolerance = 1e-12;
 
 // 6 V / (longest edge)^3 of the tetrahedron abcd: 0.71 for the regular one, negative when it is
-// turned over, NaN when its corners coincide or a coordinate is not finite.
+// turned over, 0 when two corners coincide, NaN when all four do or a coordinate is not finite.
 double relative_six_volume(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 
 // Whether abcd is turned over or degenerate by check_tet_validity's rule (NaN included), so that
