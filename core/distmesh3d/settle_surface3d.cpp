@@ -7,6 +7,7 @@
 #include "core/mesh3d/tet_boundary.h"
 #include "core/mesh3d/tet_quality.cuh"
 #include "core/mesh3d/tet_stars.h"
+#include "core/mesh3d/tet_validity.h"
 
 namespace meshd {
 namespace {
@@ -147,7 +148,14 @@ class SurfaceSettler {
 
   double quality(int32_t t) const {
     const auto& v = t_[t];
-    return oriented_tet_radius_ratio(p_[v[0]], p_[v[1]], p_[v[2]], p_[v[3]]);
+    return settled_quality(p_[v[0]], p_[v[1]], p_[v[2]], p_[v[3]]);
+  }
+
+  // q, or 0 where the validity check would call the tetrahedron degenerate: four corners near a
+  // line keep a q far above 0 (tet_validity.h), and no move may leave one for the check.
+  static double settled_quality(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    return degenerate_tet(a, b, c, d) ? std::min(0.0, oriented_tet_radius_ratio(a, b, c, d))
+                                      : oriented_tet_radius_ratio(a, b, c, d);
   }
 
   // The unit direction in which corner k of t moves to grow its volume the fastest.
@@ -165,7 +173,7 @@ class SurfaceSettler {
   double quality_with(int32_t t, int32_t v, Vec3 x) const {
     Vec3 q[4];
     for (int k = 0; k < 4; ++k) q[k] = t_[t][k] == v ? x : p_[t_[t][k]];
-    return oriented_tet_radius_ratio(q[0], q[1], q[2], q[3]);
+    return settled_quality(q[0], q[1], q[2], q[3]);
   }
 
   bool is_cap(int32_t t) const {
