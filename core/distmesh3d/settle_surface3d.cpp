@@ -154,8 +154,8 @@ class SurfaceSettler {
   // q, or 0 where the validity check would call the tetrahedron degenerate: four corners near a
   // line keep a q far above 0 (tet_validity.h), and no move may leave one for the check.
   static double settled_quality(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    return degenerate_tet(a, b, c, d) ? std::min(0.0, oriented_tet_radius_ratio(a, b, c, d))
-                                      : oriented_tet_radius_ratio(a, b, c, d);
+    const double q = oriented_tet_radius_ratio(a, b, c, d);
+    return degenerate_tet(a, b, c, d) ? std::min(0.0, q) : q;
   }
 
   // The unit direction in which corner k of t moves to grow its volume the fastest.

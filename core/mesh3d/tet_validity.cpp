@@ -143,10 +143,12 @@ void check_boundary_list(const TetMesh& mesh, std::vector<Face> once, TetValidit
   }
 }
 
-// 6 V of the tetrahedron, as orient3d has it.
+// 6 V of the tetrahedron abcd, as orient3d has it.
+double six_volume(Vec3 a, Vec3 b, Vec3 c, Vec3 d) { return dot(b - a, cross(c - a, d - a)); }
+
 double six_volume(const TetMesh& mesh, const Tet& t) {
-  const Vec3 a = mesh.points[t[0]];
-  return dot(mesh.points[t[1]] - a, cross(mesh.points[t[2]] - a, mesh.points[t[3]] - a));
+  const auto& p = mesh.points;
+  return six_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
 }
 
 }  // namespace
@@ -160,7 +162,7 @@ double relative_six_volume(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
       longest_sq = std::max(longest_sq, dot(e, e));
     }
   }
-  return dot(b - a, cross(c - a, d - a)) / (longest_sq * std::sqrt(longest_sq));
+  return six_volume(a, b, c, d) / (longest_sq * std::sqrt(longest_sq));
 }
 
 TetValidityReport check_tet_validity(const TetMesh& mesh, double volume_tolerance) {

@@ -28,6 +28,12 @@ namespace {
 
 v1::MeshRequest parse(const std::string& text) { return parse_request_text(text, "test"); }
 
+// The bytes of a file, as the fuzzer reads an input.
+std::string file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 // Converts `text` under `limits` and returns the error it throws; fails the test when none.
 Error refusal(const std::string& text, const ConversionLimits& limits = {}) {
   try {
@@ -51,8 +57,7 @@ TEST(FuzzRegression, CorpusReplaysCleanly) {
   ASSERT_FALSE(files.empty()) << MESHD_FUZZ_CORPUS;
   for (const auto& file : files) {
     SCOPED_TRACE(file.filename().string());
-    std::ifstream in(file, std::ios::binary);
-    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string bytes = file_bytes(file);
     EXPECT_NO_THROW(
         fuzz::run_request_input(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
   }
@@ -230,19 +235,14 @@ TEST(FuzzRegression, EllipseTwoEdgesAcrossMeshes) {
 // straight edge, flat by the validity check's rule but not by a radius ratio; the engine now
 // drops what the check refuses.
 TEST(FuzzRegression, CoarseVolumesKeepTheirNodesAndAValidMesh) {
-  const std::string torus =
-      "volume { geometry { rotate { axis { x: 1 } angle_deg: 30 shape { torus { major_radius: 1 "
-      "minor_radius: 0.35 } } } } } h0: 0.163216 seed: 405613 params { fscale: 1.232 "
-      "density_control_interval: 1 ttol: 0.112 momentum: 0.256 }";
-  std::ifstream in(std::filesystem::path(MESHD_FUZZ_CORPUS) / "gem-edge-needle");
-  const std::string gem{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  ASSERT_FALSE(gem.empty());
-  for (const std::string& text : {torus, gem.substr(1)}) {  // the first byte picks the format
-    JobSpec spec = to_job_spec(parse(text));
+  for (const char* name : {"torus-density-empties", "gem-edge-needle"}) {
+    const std::string input = file_bytes(std::filesystem::path(MESHD_FUZZ_CORPUS) / name);
+    ASSERT_GT(input.size(), 1u) << name;
+    SCOPED_TRACE(name);
+    JobSpec spec = to_job_spec(parse(input.substr(1)));  // the first byte picks the format
     ASSERT_TRUE(spec.volume);
     spec.volume->params.max_iterations = 50;  // as the harness meshed them
     const MeshResult3 result = generate_mesh3d(*spec.volume, nullptr, nullptr, nullptr);
-    SCOPED_TRACE(text.substr(0, 60));
     EXPECT_GT(static_cast<double>(result.mesh.points.size()), 0.5 * spec.estimated_nodes);
     const TetValidityReport report = check_tet_validity(result.mesh);
     EXPECT_TRUE(report.valid()) << (report.valid() ? "" : report.problems.front());
