@@ -14,6 +14,8 @@
 namespace meshd::gpu {
 namespace {
 
+namespace cg = cooperative_groups;
+
 struct SumPair {
   __device__ BarSums operator()(BarSums a, BarSums b) const { return {a.l2 + b.l2, a.h2 + b.h2}; }
 };
@@ -73,11 +75,11 @@ __global__ void finish_scale(DeviceSpan<const BarSums> partial, double fscale, d
 // step at a million nodes on an H200, against one at a time).
 constexpr int kGatherBatch = 4;
 
-// The measures of node i's step (StepOp's identity for a fixed node but its bars' L^2).
-__device__ StepSums move_node(const MoveArgs& a, int64_t i) {
+// The measures of node i's step (StepOp's identity for a fixed node but its bars' L^2), under the
+// L0 scale `scale`.
+__device__ StepSums move_node(const MoveArgs& a, int64_t i, double scale) {
   const Vec2 here = a.p[i];
   const bool gather = a.scattered.size == 0;
-  const double scale = *a.scale;
   Vec2 total{0.0, 0.0};
   double l2 = 0.0, size_sum = 0.0;
   if (!gather) total = {a.scattered[2 * i], a.scattered[2 * i + 1]};
@@ -129,29 +131,34 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i) {
   return measures;
 }
 
-// Each block copies the step's arguments to shared memory once, word by word: they live in
-// device memory, where the step before swapped p and p_next. The loads bypass L1, which may
-// hold the words as they were before the last step of a cooperative launch.
-__device__ void load_move_args(MoveArgs& a, const StepBatch* batch) {
-  static_assert(sizeof(MoveArgs) % sizeof(uint64_t) == 0 && sizeof(MoveArgs) / 8 <= kBlock);
-  if (threadIdx.x < sizeof(MoveArgs) / sizeof(uint64_t))
-    reinterpret_cast<uint64_t*>(&a)[threadIdx.x] =
-        __ldcg(reinterpret_cast<const unsigned long long*>(&batch->args) + threadIdx.x);
+// The block's threads copy `bytes` of device memory to `to`, word by word, then meet. The loads
+// bypass L1, which may hold words from before a kernel that ran earlier on the stream.
+__device__ void copy_words(void* to, const void* from, size_t bytes) {
+  for (size_t w = threadIdx.x; w < bytes / sizeof(uint64_t); w += blockDim.x)
+    reinterpret_cast<uint64_t*>(to)[w] =
+        __ldcg(reinterpret_cast<const unsigned long long*>(from) + w);
   __syncthreads();
+}
+// Each block copies the step's arguments to shared memory once: they live in device memory,
+// where the step before swapped p and p_next.
+__device__ void load_move_args(MoveArgs& a, const StepBatch* batch) {
+  static_assert(sizeof(MoveArgs) % sizeof(uint64_t) == 0);
+  copy_words(&a, &batch->args, sizeof(MoveArgs));
 }
 
 using StepReduce = cub::BlockReduce<StepSums, kBlock>;
 
-// Moves this block's nodes (block b of a.partial.size takes every that many blocks' worth) and
-// writes their measures to a.partial[b].
-__device__ void move_block_nodes(const MoveArgs& a, StepReduce::TempStorage& temp) {
+// Moves this block's nodes (block b of a.partial.size takes every that many blocks' worth) under
+// the L0 scale `scale` and writes their measures to partial[b].
+__device__ void move_block_nodes(const MoveArgs& a, double scale, StepSums* partial,
+                                 StepReduce::TempStorage& temp) {
   StepSums measures{0.0, 0.0, 0.0, 0.0, 0.0};
   const int64_t stride = a.partial.size * blockDim.x;
   for (int64_t i = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; i < a.p.size;
        i += stride)
-    measures = StepOp{}(measures, move_node(a, i));
+    measures = StepOp{}(measures, move_node(a, i, scale));
   const StepSums total = StepReduce(temp).Reduce(measures, StepOp{});
-  if (threadIdx.x == 0) a.partial[blockIdx.x] = total;
+  if (threadIdx.x == 0) partial[blockIdx.x] = total;
 }
 
 // Three blocks per SM: the bound keeps the kernel at 80 registers (without it, 92 and two blocks,
@@ -161,7 +168,7 @@ __global__ void __launch_bounds__(kBlock, 3) move_nodes(const StepBatch* batch) 
   __shared__ StepReduce::TempStorage temp;
   load_move_args(a, batch);
   if (blockIdx.x >= a.partial.size) return;
-  move_block_nodes(a, temp);
+  move_block_nodes(a, *a.scale, a.partial.data, temp);
 }
 
 // The step's partials summed in an order that does not depend on the summing block's size, so
@@ -196,14 +203,14 @@ __device__ StepSums sum_step_partials(DeviceSpan<const StepSums> partial, Partia
   return total;
 }
 
-// The end of a step, on one thread: its result, the lagged L0 scale for the next step, the
-// positions swapped, the settling record carried on. Returns whether another step follows: fewer
-// than `limit` ran and the rule does not stop here.
-__device__ bool end_step(StepBatch& b, const StepSums& total) {
+// The end of a step, on one thread: its result, the lagged L0 scale for the next step (into
+// *scale), the positions swapped, the settling record carried on. Returns whether another step
+// follows: fewer than `limit` ran and the rule does not stop here.
+__device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
   // Each bar was measured from both ends.
   // next_scale[1] is sum h^2 over the bars, which stays as measured until the next triangulation.
   if (b.next_scale != nullptr && b.next_scale[1] > 0.0)
-    b.next_scale[0] = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
+    *scale = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
   StepResult r;
   r.max_move = total.max_move;
   r.max_drift = total.max_drift;
@@ -218,26 +225,39 @@ __device__ bool end_step(StepBatch& b, const StepSums& total) {
   return k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling);
 }
 
-// A batch's steps in one cooperative launch, one block per partial: the blocks move their nodes,
-// meet at a grid barrier, block 0 ends the step, and they meet again before the next. In place
-// of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step against 23.
+// A batch's steps in one cooperative launch, one block per partial, with one grid barrier a step:
+// each block keeps its own copy of the batch, moves its nodes, and after the barrier sums every
+// block's partial and ends the step on its copy (the same bits in every block, so each knows the
+// next step's scale and whether it comes without a second barrier); block 0 writes its copy
+// back when the batch ends. The steps alternate between the two halves of the partials, so that
+// a block writing the next step's partial cannot overwrite one that a slower block still reads.
+// In place of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step
+// against 23 (with two barriers a step).
 __global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
-  namespace cg = cooperative_groups;
   const cg::grid_group grid = cg::this_grid();
-  __shared__ MoveArgs a;
+  __shared__ StepBatch b;
   __shared__ StepReduce::TempStorage temp;
   __shared__ PartialRuns runs;
-  for (;;) {
-    load_move_args(a, batch);
-    move_block_nodes(a, temp);
+  __shared__ double scale;
+  __shared__ bool more;
+  static_assert(sizeof(StepBatch) % sizeof(uint64_t) == 0);
+  copy_words(&b, batch, sizeof(StepBatch));
+  if (threadIdx.x == 0) scale = __ldcg(b.args.scale);
+  __syncthreads();
+  for (int step = 0;; ++step) {
+    const DeviceSpan<StepSums> partial{b.args.partial.data + (step % 2) * b.args.partial.size,
+                                       b.args.partial.size};
+    move_block_nodes(b.args, scale, partial.data, temp);
     grid.sync();
-    if (blockIdx.x == 0) {
-      const StepSums total = sum_step_partials(a.partial, runs);
-      if (threadIdx.x == 0) batch->more = end_step(*batch, total);
-    }
-    grid.sync();
-    if (!__ldcg(&batch->more)) return;
+    const StepSums total = sum_step_partials(partial, runs);
+    if (threadIdx.x == 0) b.more = more = end_step(b, total, &scale);
+    __syncthreads();
+    if (!more) break;
   }
+  if (blockIdx.x != 0) return;
+  for (size_t w = threadIdx.x; w < sizeof(StepBatch) / sizeof(uint64_t); w += blockDim.x)
+    reinterpret_cast<uint64_t*>(batch)[w] = reinterpret_cast<const uint64_t*>(&b)[w];
+  if (threadIdx.x == 0 && b.next_scale != nullptr) b.next_scale[0] = scale;
 }
 
 __global__ void scatter_bar_forces(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
@@ -263,7 +283,7 @@ __global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditiona
   __shared__ PartialRuns runs;
   const StepSums total = sum_step_partials(batch->args.partial, runs);
   if (threadIdx.x != 0) return;
-  const bool again = end_step(*batch, total);
+  const bool again = end_step(*batch, total, batch->next_scale);
   if (in_graph) cudaGraphSetConditional(more, again);
 }
 

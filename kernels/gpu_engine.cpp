@@ -348,7 +348,9 @@ struct GpuEngine::Impl {
     } else {
       scattered.resize(0);
     }
-    step_partial.resize(std::min(gpu::blocks_for(n), step_wave));
+    // Twice the blocks' partials: the cooperative steps alternate between the two halves.
+    const int64_t blocks = std::min(gpu::blocks_for(n), step_wave);
+    step_partial.resize(2 * blocks);
     gpu::StepBatch& b = *h_batch.get();
     gpu::MoveArgs& a = b.args;
     a.p = p.span();
@@ -374,7 +376,7 @@ struct GpuEngine::Impl {
     a.geps = prm.geps * problem->h0;
     a.deps = prm.deps * problem->h0;
     a.near_boundary = kNearBoundaryRelative * problem->h0;
-    a.partial = step_partial.span();
+    a.partial = {step_partial.data(), blocks};
     b.next_scale = lagged ? scale.data() : nullptr;
     b.fscale = prm.fscale;
     b.rule = rule;
@@ -389,9 +391,9 @@ struct GpuEngine::Impl {
     // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
     // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
     // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
-    const bool together = steps_together && static_cast<int64_t>(step_partial.size()) < step_wave;
+    const bool together = steps_together && blocks < step_wave;
     if (step_graph && limit > 1 && together) {
-      gpu::launch_steps_together(batch.data(), step_partial.size(), stream);
+      gpu::launch_steps_together(batch.data(), blocks, stream);
     } else if (step_graph && limit > 1) {
       step_graph->launch(stream);
     } else {

@@ -149,8 +149,9 @@ struct StepBatch {
 // those past args.partial.size return at once.
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream);
 // The alternative to the step graph's loop where the device launches cooperatively: the batch's
-// steps in one launch of `blocks` (args.partial.size) blocks, with grid barriers between a step's
-// moves and its end, and between steps. The same bits as move_nodes and finish_step one by one.
+// steps in one launch of `blocks` (args.partial.size) blocks, with a grid barrier between a step's
+// moves and its end. args.partial must be followed by room for as many more partials. The same
+// bits as move_nodes and finish_step one by one.
 // steps_together_fit: whether `blocks` blocks of it run at once on `device`.
 bool steps_together_fit(int device, int64_t blocks);
 void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream);
