@@ -132,7 +132,7 @@ __device__ StepSums move_node(const MoveArgs& a, int64_t i, double scale) {
 }
 
 // The block's threads copy `bytes` of device memory to `to`, word by word, then meet. The loads
-// bypass L1, which may hold words from before a kernel that ran earlier on the stream.
+// bypass L1 (__ldcg): another block or kernel wrote the words.
 __device__ void copy_words(void* to, const void* from, size_t bytes) {
   for (size_t w = threadIdx.x; w < bytes / sizeof(uint64_t); w += blockDim.x)
     reinterpret_cast<uint64_t*>(to)[w] =
