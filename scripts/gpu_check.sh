@@ -129,13 +129,14 @@ for step in "${steps[@]}"; do
       $run service_overhead --backend gpu --repeat 5 2>&1 | tee "$out/service_overhead_gpu.log"
       $run service_overhead --backend cpu --repeat 3 2>&1 | tee "$out/service_overhead_cpu.log" ;;
     throughput)
-      # ~2k-node disks through an in-process meshd: a lone client (latency), then 64 clients
-      # on the GPU with 1 to 16 workers, on the host's CPU cores alone, and on both (auto);
-      # then a mix of 500 to 50k nodes.
+      # ~2k-node disks through an in-process meshd: a lone client (latency, each job in
+      # lone_jobs.csv), then 64 clients on the GPU with 1 to 16 workers, on the host's CPU cores
+      # alone, and on both (auto); then a mix of 500 to 50k nodes.
       cores=$(nproc)
       t() { $run throughput "$@" 2>&1 | tee -a "$out/throughput.log" | tail -n +3; }
-      echo "| jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | on GPU | on CPU | meshd |"
-      t --jobs 300 --clients 1 -- --backend gpu | sed 's/$/ gpu, 1 worker |/'
+      echo "| jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | mesh ms (p99) | on GPU | on CPU | meshd |"
+      t --jobs 300 --clients 1 --latencies "$out/lone_jobs.csv" -- --backend gpu |
+        sed 's/$/ gpu, 1 worker |/'
       for w in 1 2 4 8 16; do
         t --jobs 2000 --clients 64 -- --backend gpu --gpu-workers $w | sed "s/\$/ gpu, $w workers |/"
       done
@@ -151,7 +152,7 @@ for step in "${steps[@]}"; do
       # The same jobs on the first GPU, then on every visible one (8 GPU workers each, every job
       # asking for a GPU), twice in turn: ~2k-node disks and 50k-node ones.
       all=$(nvidia-smi --query-gpu=index --format=csv,noheader | paste -sd, -)
-      echo "| GPUs | jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | on GPU | on CPU |"
+      echo "| GPUs | jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | mesh ms (p99) | on GPU | on CPU |"
       for nodes in 2000 50000; do
         jobs=3000; [ $nodes -gt 10000 ] && jobs=600
         for visible in 0 "$all" 0 "$all"; do
