@@ -33,8 +33,8 @@ class Worker {
   Worker(const Worker&) = delete;
   Worker& operator=(const Worker&) = delete;
 
-  // Builds the engine and meshes a small disk on it, on the caller's thread. Throws when the
-  // engine cannot be built or the mesh fails.
+  // Builds the engine and meshes small disks on it (worker.cpp says which), on the caller's
+  // thread. Throws when the engine cannot be built or a mesh fails.
   void warm_up();
   // Starts taking jobs (after warm_up). The thread ends when the queue closes.
   void start();

@@ -6,6 +6,10 @@
 #include "server/worker_engine.h"
 #include "tests/server/test_server.h"
 
+#ifdef MESHD_HAVE_CUDA
+#include "kernels/gpu_engine.h"
+#endif
+
 namespace meshd::testing {
 namespace {
 
@@ -78,6 +82,22 @@ TEST_F(GpuService, GpuWorkerKeepsItsEngineWarmAcrossJobs) {
   EXPECT_EQ(first.done.nodes(), second.done.nodes());  // same bits on a warm engine
   EXPECT_EQ(first.done.result_sha256(), second.done.result_sha256());
 }
+
+#ifdef MESHD_HAVE_CUDA
+// A GPU worker's warm-up leaves its arena large enough for a small job: the first ~2k-node job
+// after the start allocates no device memory.
+TEST_F(GpuService, AWarmWorkersFirstSmallJobAllocatesNothing) {
+  ServerOptions options = test_options();
+  options.backend = Backend::kGpu;
+  TestServer server(options, workers_for(options));
+  auto stub = server.stub();
+  const int64_t before = GpuEngine::device_allocations();
+  const StreamResult r = generate(*stub, disk_request(0.04, v1::JobOptions::BACKEND_GPU));
+  ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+  EXPECT_GT(r.done.nodes(), 2000);
+  EXPECT_EQ(GpuEngine::device_allocations(), before);
+}
+#endif
 
 }  // namespace
 }  // namespace meshd::testing
