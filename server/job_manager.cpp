@@ -3,9 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <future>
 #include <random>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "core/common/error.h"
 #include "server/status_mapping.h"
@@ -48,9 +50,12 @@ JobManager::JobManager(JobManagerOptions options, std::vector<WorkerSpec> worker
 JobManager::~JobManager() { drain(std::chrono::milliseconds(0)); }
 
 void JobManager::start() {
-  for (auto& w : workers_) {
-    w->warm_up();
-    if (w->kind() == Backend::kGpu) ++live_gpu_workers_;
+  // The workers warm up at once, each on its own thread; a failed warm-up fails the start.
+  std::vector<std::future<void>> warm;
+  for (auto& w : workers_) warm.push_back(w->start());
+  for (size_t i = 0; i < workers_.size(); ++i) {
+    warm[i].get();
+    if (workers_[i]->kind() == Backend::kGpu) ++live_gpu_workers_;
   }
   queue_.set_gpu_workers(live_gpu_workers_.load());
   // A GPU worker's host thread launches and waits on latency-bound work, and CPU work on every
@@ -61,7 +66,7 @@ void JobManager::start() {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int spare = std::max(1, cores - live_gpu_workers_.load());
   queue_.set_shared_cpu_limit(std::max(1, spare / static_cast<int>(std::max(1u, cpu_threads_))));
-  for (auto& w : workers_) w->start();
+  for (auto& w : workers_) w->take_jobs();
   housekeeping_ = std::thread([this] { housekeeping(); });
 }
 

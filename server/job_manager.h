@@ -50,8 +50,8 @@ class JobManager {
   JobManager(const JobManager&) = delete;
   JobManager& operator=(const JobManager&) = delete;
 
-  // Warms every worker (each builds its engine and meshes a small disk), then starts them.
-  // Throws when a worker cannot warm up.
+  // Warms every worker at once (each builds its engine and meshes small disks on its own
+  // thread), then lets them take jobs. Throws when a worker cannot warm up.
   void start();
 
   // Validates `request` and queues it with `deadline` (Clock::time_point::max() for none).

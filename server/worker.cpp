@@ -71,11 +71,29 @@ void Worker::warm_up() {
                seconds_since(t));
 }
 
-void Worker::start() {
-  thread_ = std::thread([this] { loop(); });
+std::future<void> Worker::start() {
+  std::promise<void> warm;
+  std::future<void> outcome = warm.get_future();
+  thread_ = std::thread([this, warm = std::move(warm)]() mutable {
+    try {
+      warm_up();
+    } catch (...) {
+      warm.set_exception(std::current_exception());
+      return;
+    }
+    warm.set_value();
+    may_take_jobs_.wait();
+    loop();
+  });
+  return outcome;
+}
+
+void Worker::take_jobs() {
+  if (!took_jobs_.exchange(true)) may_take_jobs_.count_down();
 }
 
 void Worker::join() {
+  take_jobs();
   if (thread_.joinable()) thread_.join();
 }
 

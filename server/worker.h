@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <functional>
+#include <future>
+#include <latch>
 #include <memory>
 #include <string>
 #include <thread>
@@ -33,20 +35,25 @@ class Worker {
   Worker(const Worker&) = delete;
   Worker& operator=(const Worker&) = delete;
 
-  // Builds the engine and meshes small disks on it (worker.cpp says which), on the caller's
-  // thread. Throws when the engine cannot be built or a mesh fails.
-  void warm_up();
-  // Starts taking jobs (after warm_up). The thread ends when the queue closes.
-  void start();
+  // Starts the worker's thread: it builds the engine and meshes small disks on it (worker.cpp
+  // says which), then waits for take_jobs(). The warm-up runs on the thread that runs the jobs,
+  // so that the thread's own heap and state are warm for the first one. The future holds the
+  // warm-up's outcome: the exception when the engine cannot be built or a mesh fails (the
+  // thread has ended then).
+  std::future<void> start();
+  // Lets the warm worker take jobs. The thread ends when the queue closes.
+  void take_jobs();
+  // Lets a worker still waiting go on (the queue, closed, ends it) and waits for its thread.
   void join();
 
   const std::string& name() const { return name_; }
   Backend kind() const { return kind_; }
-  // Where its jobs run ("cpu (2 threads)"); empty before warm_up.
+  // Where its jobs run ("cpu (2 threads)"); empty before the warm-up.
   const std::string& device() const { return device_; }
   bool retired() const { return retired_.load(); }
 
  private:
+  void warm_up();
   void loop();
   void run(Job& job);
   // The job's mesh on this worker's engine, encoded; `t` is when it started.
@@ -66,6 +73,8 @@ class Worker {
   std::unique_ptr<WorkerEngine> engine_;
   std::string device_;
   std::atomic<bool> retired_{false};
+  std::latch may_take_jobs_{1};
+  std::atomic<bool> took_jobs_{false};
   std::thread thread_;
 };
 

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <memory>
 #include <random>
+#include <stdexcept>
 #include <thread>
 
 #include "core/common/error.h"
 #include "server/job_manager.h"
+#include "tests/server/test_engines.h"
 #include "tests/server/test_server.h"
 
 namespace meshd::testing {
@@ -347,6 +350,38 @@ TEST(JobManager, RetentionForgetsFinishedJobs) {
     }
   }
   EXPECT_TRUE(forgotten);
+  manager.drain(0ms);
+}
+
+// A worker warms up on the thread that runs its jobs, so that the first job finds that thread's
+// heap and state warm.
+TEST(JobManager, AWorkerWarmsUpOnTheThreadThatRunsItsJobs) {
+  Metrics metrics;
+  auto threads = std::make_shared<ThreadLog>();
+  JobManager manager(JobManagerOptions{},
+                     {{"cpu0", Backend::kCpu, thread_logging_cpu_factory(threads)}}, metrics);
+  manager.start();
+  const auto job = manager.submit(disk_request(0.2), Job::Clock::time_point::max());
+  const auto until = Job::Clock::now() + 10s;
+  while (!job->is_final() && Job::Clock::now() < until) std::this_thread::sleep_for(5ms);
+  ASSERT_EQ(job->state(), JobState::kSucceeded);
+  manager.drain(0ms);
+  std::lock_guard lock(threads->mutex);
+  ASSERT_EQ(threads->ids.size(), 2u);  // the warm-up, then the job
+  EXPECT_EQ(threads->ids[0], threads->ids[1]);
+  EXPECT_NE(threads->ids[0], std::this_thread::get_id());
+}
+
+// Workers warm up at once; one that cannot build its engine fails the start, and the manager
+// still ends (the warm workers' threads with it).
+TEST(JobManager, AWorkerThatCannotWarmUpFailsTheStart) {
+  Metrics metrics;
+  std::vector<WorkerSpec> workers = cpu_workers(2, 1);
+  workers.push_back({"broken", Backend::kCpu, []() -> std::unique_ptr<WorkerEngine> {
+                       throw std::runtime_error("no engine here");
+                     }});
+  JobManager manager(JobManagerOptions{}, std::move(workers), metrics);
+  EXPECT_THROW(manager.start(), std::runtime_error);
   manager.drain(0ms);
 }
 

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 
 #include "core/common/thread_pool.h"
 #include "core/distmesh/cpu_engine.h"
@@ -65,7 +67,26 @@ class FailingEngine final : public WorkerTestEngine {
   bool failed_ = false;  // once per engine
 };
 
+class ThreadLoggingEngine final : public WorkerTestEngine {
+ public:
+  explicit ThreadLoggingEngine(std::shared_ptr<ThreadLog> threads) : threads_(std::move(threads)) {}
+  int64_t initialize(const CompiledProblem& p) override {
+    {
+      std::lock_guard lock(threads_->mutex);
+      threads_->ids.push_back(std::this_thread::get_id());
+    }
+    return WorkerTestEngine::initialize(p);
+  }
+
+ private:
+  std::shared_ptr<ThreadLog> threads_;
+};
+
 }  // namespace
+
+WorkerEngineFactory thread_logging_cpu_factory(std::shared_ptr<ThreadLog> threads) {
+  return [threads] { return std::make_unique<ThreadLoggingEngine>(threads); };
+}
 
 WorkerEngineFactory gated_cpu_factory(std::shared_ptr<Gate> gate, bool gate_warm_up) {
   return [gate, gate_warm_up] { return std::make_unique<GatedEngine>(gate, gate_warm_up); };

@@ -6,6 +6,8 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <thread>
+#include <vector>
 
 #include "core/common/error.h"
 #include "server/worker_engine.h"
@@ -48,5 +50,13 @@ WorkerEngineFactory gated_cpu_factory(std::shared_ptr<Gate> gate, bool gate_warm
 // `builds` counts the engines the factory made.
 WorkerEngineFactory failing_cpu_factory(ErrorCode code, int fail_at,
                                         std::shared_ptr<std::atomic<int>> builds);
+
+// The CPU engine (1 thread) that adds the id of the thread of each initialize() (the warm-ups'
+// and each job's) to `threads`.
+struct ThreadLog {
+  std::mutex mutex;
+  std::vector<std::thread::id> ids;
+};
+WorkerEngineFactory thread_logging_cpu_factory(std::shared_ptr<ThreadLog> threads);
 
 }  // namespace meshd::testing
