@@ -50,7 +50,10 @@ JobManager::JobManager(JobManagerOptions options, std::vector<WorkerSpec> worker
 JobManager::~JobManager() { drain(std::chrono::milliseconds(0)); }
 
 void JobManager::start() {
-  // The workers warm up at once, each on its own thread; a failed warm-up fails the start.
+  // The workers warm up at once, each on its own thread; a failed warm-up fails the start. The
+  // log's registry is built on first use: here, before their threads, so that they only read it
+  // (its guard is in a library that ThreadSanitizer does not see, which would report a race).
+  spdlog::info("warming up {} workers", workers_.size());
   std::vector<std::future<void>> warm;
   for (auto& w : workers_) warm.push_back(w->start());
   for (size_t i = 0; i < workers_.size(); ++i) {
