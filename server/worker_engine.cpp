@@ -66,6 +66,14 @@ int usable_gpu_count() {
 #endif
 }
 
+int64_t gpu_allocation_count() {
+#ifdef MESHD_HAVE_CUDA
+  return GpuEngine::device_allocations();
+#else
+  return 0;
+#endif
+}
+
 WorkerEngineFactory gpu_engine_factory(int device, unsigned host_threads) {
 #ifdef MESHD_HAVE_CUDA
   return [device, host_threads] { return std::make_unique<GpuWorkerEngine>(device, host_threads); };

@@ -34,6 +34,10 @@ WorkerEngineFactory cpu_engine_factory(unsigned threads);
 // CUDA devices this build can use: 0 when built without CUDA or when none is visible.
 int usable_gpu_count();
 
+// Device allocations made so far in this process by the GPU engines (0 in a build without them),
+// so that a test can hold a warm worker's first small job to none.
+int64_t gpu_allocation_count();
+
 // The GPU engine on `device`, with a pool of `host_threads` threads for the host's share of its
 // jobs; its context is created and its modules loaded when built. Throws Error(kUnavailable)
 // when this build has no GPU engine.

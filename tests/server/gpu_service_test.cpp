@@ -6,10 +6,6 @@
 #include "server/worker_engine.h"
 #include "tests/server/test_server.h"
 
-#ifdef MESHD_HAVE_CUDA
-#include "kernels/gpu_engine.h"
-#endif
-
 namespace meshd::testing {
 namespace {
 
@@ -83,7 +79,6 @@ TEST_F(GpuService, GpuWorkerKeepsItsEngineWarmAcrossJobs) {
   EXPECT_EQ(first.done.result_sha256(), second.done.result_sha256());
 }
 
-#ifdef MESHD_HAVE_CUDA
 // A GPU worker's warm-up leaves its arena large enough for a small job: the first ~2k-node job
 // after the start allocates no device memory.
 TEST_F(GpuService, AWarmWorkersFirstSmallJobAllocatesNothing) {
@@ -91,13 +86,12 @@ TEST_F(GpuService, AWarmWorkersFirstSmallJobAllocatesNothing) {
   options.backend = Backend::kGpu;
   TestServer server(options, workers_for(options));
   auto stub = server.stub();
-  const int64_t before = GpuEngine::device_allocations();
+  const int64_t before = gpu_allocation_count();
   const StreamResult r = generate(*stub, disk_request(0.04, v1::JobOptions::BACKEND_GPU));
   ASSERT_TRUE(r.status.ok()) << r.status.error_message();
   EXPECT_GT(r.done.nodes(), 2000);
-  EXPECT_EQ(GpuEngine::device_allocations(), before);
+  EXPECT_EQ(gpu_allocation_count(), before);
 }
-#endif
 
 }  // namespace
 }  // namespace meshd::testing
