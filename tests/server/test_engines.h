@@ -51,12 +51,14 @@ WorkerEngineFactory gated_cpu_factory(std::shared_ptr<Gate> gate, bool gate_warm
 WorkerEngineFactory failing_cpu_factory(ErrorCode code, int fail_at,
                                         std::shared_ptr<std::atomic<int>> builds);
 
-// The CPU engine (1 thread) that adds the id of the thread of each initialize() (the warm-ups'
-// and each job's) to `threads`.
+// The threads an engine's calls ran on, in order.
 struct ThreadLog {
   std::mutex mutex;
   std::vector<std::thread::id> ids;
 };
+
+// The CPU engine (1 thread) that adds the id of the thread of each initialize() (the warm-ups'
+// and each job's) to `threads`.
 WorkerEngineFactory thread_logging_cpu_factory(std::shared_ptr<ThreadLog> threads);
 
 }  // namespace meshd::testing
