@@ -1,5 +1,8 @@
 #include "kernels/gpu_engine.h"
 
+#include <cuda.h>
+#include <cuda_runtime.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -60,6 +63,34 @@ int gpu_device_count() {
     return 0;
   }
   return count;
+}
+
+void share_gpus_among_engines() {
+  setenv("CUDA_MODULE_LOADING", "EAGER", /*overwrite=*/0);
+  for (int d = 0; d < gpu_device_count(); ++d) {
+    MESHD_CUDA_CHECK(cudaSetDevice(d));
+    MESHD_CUDA_CHECK(cudaSetDeviceFlags(cudaDeviceScheduleYield));
+  }
+}
+
+bool gpu_kernels_load_eagerly() {
+  // A driver call: the runtime does not report the loading mode.
+  using LoadingMode = CUresult (*)(CUmoduleLoadingMode*);
+  void* entry = nullptr;
+  cudaDriverEntryPointQueryResult found{};
+  MESHD_CUDA_CHECK(cudaGetDriverEntryPointByVersion("cuModuleGetLoadingMode", &entry, 12000,
+                                                    cudaEnableDefault, &found));
+  CUmoduleLoadingMode mode{};
+  return found == cudaDriverEntryPointSuccess &&
+         reinterpret_cast<LoadingMode>(entry)(&mode) == CUDA_SUCCESS &&
+         mode == CU_MODULE_EAGER_LOADING;
+}
+
+bool gpu_waits_yield(int device) {
+  MESHD_CUDA_CHECK(cudaSetDevice(device));
+  unsigned flags = 0;
+  MESHD_CUDA_CHECK(cudaGetDeviceFlags(&flags));
+  return (flags & cudaDeviceScheduleMask) == cudaDeviceScheduleYield;
 }
 
 int64_t gpu_memory_in_use(int device) {

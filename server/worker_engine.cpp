@@ -1,5 +1,6 @@
 #include "server/worker_engine.h"
 
+#include <mutex>
 #include <string>
 
 #include "core/common/error.h"
@@ -60,9 +61,21 @@ WorkerEngineFactory cpu_engine_factory(unsigned threads) {
 
 int usable_gpu_count() {
 #ifdef MESHD_HAVE_CUDA
+  // The first call of a server's process: its workers share the devices (gpu_engine.h).
+  static std::once_flag shared;
+  std::call_once(shared, share_gpus_among_engines);
   return gpu_device_count();
 #else
   return 0;
+#endif
+}
+
+bool gpus_shared_among_workers(int device) {
+#ifdef MESHD_HAVE_CUDA
+  return gpu_kernels_load_eagerly() && gpu_waits_yield(device);
+#else
+  (void)device;
+  return false;
 #endif
 }
 

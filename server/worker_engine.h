@@ -31,8 +31,13 @@ using WorkerEngineFactory = std::function<std::unique_ptr<WorkerEngine>()>;
 // The CPU engine on a pool of `threads` threads (0: all cores).
 WorkerEngineFactory cpu_engine_factory(unsigned threads);
 
-// CUDA devices this build can use: 0 when built without CUDA or when none is visible.
+// CUDA devices this build can use: 0 when built without CUDA or when none is visible. The
+// first call sets the process up for many GPU workers (share_gpus_among_engines in
+// kernels/gpu_engine.h): call it before anything else touches CUDA.
 int usable_gpu_count();
+// Whether that setup holds on `device`: every kernel loaded at the context's start, and threads
+// that yield while they wait. False in a build without the GPU engine.
+bool gpus_shared_among_workers(int device);
 
 // Device allocations made so far in this process by the GPU engines (0 in a build without them),
 // so that a test can hold a warm worker's first small job to none.

@@ -93,5 +93,14 @@ TEST_F(GpuService, AWarmWorkersFirstSmallJobAllocatesNothing) {
   EXPECT_EQ(gpu_allocation_count(), before);
 }
 
+// Many workers share a device: no kernel loads lazily under load (it would wait until the whole
+// device is idle), and threads waiting for their streams yield their cores. SetUp's
+// usable_gpu_count is this process's first CUDA call.
+TEST_F(GpuService, WorkersLoadEveryKernelAtTheStartAndYieldWhileTheyWait) {
+  for (int device = 0; device < usable_gpu_count(); ++device) {
+    EXPECT_TRUE(gpus_shared_among_workers(device)) << "device " << device;
+  }
+}
+
 }  // namespace
 }  // namespace meshd::testing
