@@ -130,14 +130,14 @@ for step in "${steps[@]}"; do
       $run service_overhead --backend cpu --repeat 3 2>&1 | tee "$out/service_overhead_cpu.log" ;;
     throughput)
       # ~2k-node disks through an in-process meshd: a lone client (latency, each job in
-      # lone_jobs.csv), then 64 clients on the GPU with 1 to 16 workers, on the host's CPU cores
+      # lone_jobs.csv), then 64 clients on the GPU with 1 to 24 workers, on the host's CPU cores
       # alone, and on both (auto); then a mix of 500 to 50k nodes.
       cores=$(nproc)
       t() { $run throughput "$@" 2>&1 | tee -a "$out/throughput.log" | tail -n +3; }
       echo "| jobs | nodes | load | ok | jobs/s | p50 ms | p90 ms | p99 ms | max ms | mesh ms (mean) | mesh ms (p99) | on GPU | on CPU | meshd |"
       t --jobs 300 --clients 1 --latencies "$out/lone_jobs.csv" -- --backend gpu |
         sed 's/$/ gpu, 1 worker |/'
-      for w in 1 2 4 8 16; do
+      for w in 1 2 4 8 16 24; do
         t --jobs 2000 --clients 64 -- --backend gpu --gpu-workers $w | sed "s/\$/ gpu, $w workers |/"
       done
       t --jobs 2000 --clients 64 -- --backend cpu --cpu-workers "$cores" --cpu-threads 1 |
