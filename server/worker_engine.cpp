@@ -37,7 +37,6 @@ class GpuWorkerEngine final : public WorkerEngine {
         engine3_(device),
         name_(gpu_device_name(device) + " (device " + std::to_string(device) + ")") {
     engine_.set_host_pool(&host_pool_);
-    engine_.warm_up();
   }
   Engine& engine() override { return engine_; }
   Engine3* engine3() override { return &engine3_; }

@@ -44,8 +44,8 @@ bool gpus_shared_among_workers(int device);
 int64_t gpu_allocation_count();
 
 // The GPU engine on `device`, with a pool of `host_threads` threads for the host's share of its
-// jobs; its context is created and its modules loaded when built. Throws Error(kUnavailable)
-// when this build has no GPU engine.
+// jobs; its context is created when built (the worker's warm-up meshes on it, worker.h). Throws
+// Error(kUnavailable) when this build has no GPU engine.
 WorkerEngineFactory gpu_engine_factory(int device, unsigned host_threads);
 
 }  // namespace meshd
