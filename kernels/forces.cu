@@ -30,14 +30,18 @@ struct StepOp {
 
 // Uniform is a template parameter: without the size evaluator the kernel fits 32 registers and
 // eight blocks per SM, so that its kMaxReduceBlocks blocks run as one wave.
+// The last block to finish sums the blocks' partials, in the order of their indices whichever
+// block that is, and writes the scale: one launch where a second, one block's, cost a small job
+// one more of the calls that bound many small jobs at once (bench/RESULTS.md).
 template <bool kUniform>
 __global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
     measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
-                 DeviceSpan<double> length, DeviceSpan<double> size, DeviceSpan<BarSums> partial) {
+                 DeviceSpan<double> length, DeviceSpan<double> size, BarsMeasure m) {
   // length and size are written only where given (size > 0): the step needs the sizes of a
   // graded field, density control needs both.
   using Reduce = cub::BlockReduce<BarSums, kBlock>;
   __shared__ typename Reduce::TempStorage temp;
+  __shared__ bool last;
   BarSums sums{0.0, 0.0};
   const int64_t stride = static_cast<int64_t>(gridDim.x) * blockDim.x;
   for (int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; b < bars.size;
@@ -50,25 +54,28 @@ __global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
     if (size.size > 0) size[b] = h;
     sums = SumPair{}(sums, {len * len, h * h});
   }
+  const BarSums block_total = Reduce(temp).Reduce(sums, SumPair{});
+  if (threadIdx.x == 0) {
+    m.partial[blockIdx.x] = block_total;
+    __threadfence();  // the partial is visible before the ticket says so
+    last = atomicAdd(m.ticket, 1u) == gridDim.x - 1;
+  }
+  __syncthreads();
+  if (!last) return;
+  sums = {0.0, 0.0};
+  for (int64_t i = threadIdx.x; i < gridDim.x; i += blockDim.x)
+    sums = SumPair{}(sums, {__ldcg(&m.partial[i].l2), __ldcg(&m.partial[i].h2)});
+  __syncthreads();  // temp is reused
   const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
-  if (threadIdx.x == 0) partial[blockIdx.x] = total;
+  if (threadIdx.x != 0) return;
+  m.scale[0] = total.h2 > 0.0 ? m.fscale * sqrt(total.l2 / total.h2) : 0.0;
+  m.scale[1] = total.h2;  // for the lagged scale of the steps until the next triangulation
+  *m.ticket = 0;          // for the next launch on this stream
 }
 
 // The one-block kernels that sum the partials run 1024 threads: each reads a few partials, where
 // 256 threads each read a dozen one after the other.
 constexpr int kFinishBlock = 1024;
-
-__global__ void finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale) {
-  using Reduce = cub::BlockReduce<BarSums, kFinishBlock>;
-  __shared__ typename Reduce::TempStorage temp;
-  BarSums sums{0.0, 0.0};
-  for (int64_t i = threadIdx.x; i < partial.size; i += blockDim.x)
-    sums = SumPair{}(sums, partial[i]);
-  const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
-  if (threadIdx.x != 0) return;
-  scale[0] = total.h2 > 0.0 ? fscale * sqrt(total.l2 / total.h2) : 0.0;
-  scale[1] = total.h2;  // for the lagged scale of the steps until the next triangulation
-}
 
 // Gathers the far ends of CSR entries [k, end) a few at a time: their loads are independent, and
 // issuing them together hides the latency that one load after the other would expose (3% of a
@@ -233,7 +240,13 @@ __device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
 // a block writing the next step's partial cannot overwrite one that a slower block still reads.
 // In place of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step
 // against 23 (with two barriers a step).
-__global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
+struct StepsTogether {
+  StepBatch head;    // the batch as the host set it up
+  StepBatch* batch;  // where it ends
+};
+static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 KiB");
+__global__ void __launch_bounds__(kBlock, 3)
+    steps_together(const __grid_constant__ StepsTogether t) {
   const cg::grid_group grid = cg::this_grid();
   __shared__ StepBatch b;
   __shared__ StepReduce::TempStorage temp;
@@ -241,7 +254,9 @@ __global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
   __shared__ double scale;
   __shared__ bool more;
   static_assert(sizeof(StepBatch) % sizeof(uint64_t) == 0);
-  copy_words(&b, batch, sizeof(StepBatch));
+  for (size_t w = threadIdx.x; w < sizeof(StepBatch) / sizeof(uint64_t); w += blockDim.x)
+    reinterpret_cast<uint64_t*>(&b)[w] = reinterpret_cast<const uint64_t*>(&t.head)[w];
+  __syncthreads();
   if (threadIdx.x == 0) scale = __ldcg(b.args.scale);
   __syncthreads();
   for (int step = 0;; ++step) {
@@ -256,7 +271,7 @@ __global__ void __launch_bounds__(kBlock, 3) steps_together(StepBatch* batch) {
   }
   if (blockIdx.x != 0) return;
   for (size_t w = threadIdx.x; w < sizeof(StepBatch) / sizeof(uint64_t); w += blockDim.x)
-    reinterpret_cast<uint64_t*>(batch)[w] = reinterpret_cast<const uint64_t*>(&b)[w];
+    reinterpret_cast<uint64_t*>(t.batch)[w] = reinterpret_cast<const uint64_t*>(&b)[w];
   if (threadIdx.x == 0 && b.next_scale != nullptr) b.next_scale[0] = scale;
 }
 
@@ -298,22 +313,17 @@ __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double
 
 }  // namespace
 
+int64_t measure_bars_blocks(int64_t bars) { return std::max<int64_t>(1, reduce_blocks_for(bars)); }
+
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
-                         DeviceSpan<BarSums> partial, cudaStream_t stream) {
-  if (bars.size == 0) return;
-  const int64_t blocks = reduce_blocks_for(bars.size);
+                         const BarsMeasure& m, cudaStream_t stream) {
+  const int64_t blocks = measure_bars_blocks(bars.size);
   if (uniform)
-    measure_bars<true><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, partial);
+    measure_bars<true><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, m);
   else
-    measure_bars<false><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, partial);
+    measure_bars<false><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, m);
   MESHD_CHECK_LAUNCH("measure_bars");
-}
-
-void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
-                         cudaStream_t stream) {
-  finish_scale<<<1, kFinishBlock, 0, stream>>>(partial, fscale, scale);
-  MESHD_CHECK_LAUNCH("finish_scale");
 }
 
 int64_t move_nodes_wave(int device) {
@@ -324,8 +334,10 @@ bool steps_together_fit(int device, int64_t blocks) {
   return blocks <= cooperative_blocks(steps_together, kBlock, device);
 }
 
-void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream) {
-  launch_cooperative(steps_together, blocks, kBlock, batch, stream, "steps_together");
+void launch_steps_together(const StepBatch& head, StepBatch* batch, int64_t blocks,
+                           cudaStream_t stream) {
+  launch_cooperative(steps_together, blocks, kBlock, StepsTogether{head, batch}, stream,
+                     "steps_together");
 }
 
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream) {

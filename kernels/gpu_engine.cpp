@@ -194,6 +194,7 @@ struct GpuEngine::Impl {
   bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
   DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, degree;
   DeviceBuffer<BarSums> bar_partial;
+  DeviceBuffer<unsigned> bar_ticket;  // measure_bars' count of blocks done, 0 between launches
   DeviceBuffer<StepSums> step_partial;
   int64_t step_wave = 1;                       // move_nodes_wave
   DeviceBuffer<gpu::StepBatch> batch;          // one, for the step graph
@@ -353,11 +354,11 @@ struct GpuEngine::Impl {
     const bool store_size = for_density_control || !uniform;
     length.resize(for_density_control ? nb : 0);
     size.resize(store_size ? nb : 0);
-    bar_partial.resize(gpu::reduce_blocks_for(nb));
+    bar_partial.resize(gpu::measure_bars_blocks(nb));
     scale.resize(2);
-    gpu::launch_measure_bars(p.span(), bars.span(), fh, uniform, length.span(), size.span(),
-                             bar_partial.span(), stream);
-    gpu::launch_finish_scale(bar_partial.span(), problem->params.fscale, scale.data(), stream);
+    gpu::launch_measure_bars(
+        p.span(), bars.span(), fh, uniform, length.span(), size.span(),
+        {bar_partial.data(), bar_ticket.data(), problem->params.fscale, scale.data()}, stream);
   }
 
   // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one, launched
@@ -414,9 +415,12 @@ struct GpuEngine::Impl {
     b.first_iteration = first_iteration;
     b.limit = limit;
     b.count = 0;
-    // Pinned memory, written only after the last run's copies finished (run_steps syncs).
     constexpr size_t kHead = offsetof(gpu::StepBatch, results);
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(batch.data(), &b, kHead, cudaMemcpyHostToDevice, stream));
+    // Pinned memory, written only after the last run's copies finished (run_steps syncs). The
+    // cooperative steps take it with their launch.
+    const auto copy_head = [&] {
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(batch.data(), &b, kHead, cudaMemcpyHostToDevice, stream));
+    };
     // A lone step costs less launched directly than through the graph's loop (on an H200 at 1M
     // nodes, a step of the exact scale took 119-130 us through it, 110-122 us directly).
     // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
@@ -424,10 +428,12 @@ struct GpuEngine::Impl {
     // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
     const bool together = steps_together && blocks < step_wave;
     if (step_graph && limit > 1 && together) {
-      gpu::launch_steps_together(batch.data(), blocks, stream);
+      gpu::launch_steps_together(b, batch.data(), blocks, stream);
     } else if (step_graph && limit > 1) {
+      copy_head();
       step_graph->launch(stream);
     } else {
+      copy_head();
       gpu::launch_move_nodes(batch.data(), step_wave, stream);
       gpu::launch_finish_step(batch.data(), nullptr, stream);
     }
@@ -917,6 +923,8 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
   impl_->flip_batch.resize(1);
   MESHD_CUDA_CHECK(
       cudaMemsetAsync(impl_->flip_batch.data(), 0, sizeof(gpu::FlipBatch), impl_->stream));
+  impl_->bar_ticket.resize(1);
+  MESHD_CUDA_CHECK(cudaMemsetAsync(impl_->bar_ticket.data(), 0, sizeof(unsigned), impl_->stream));
   // compute-sanitizer's racecheck crashes on graphs with conditional nodes: the variable runs the
   // same kernels launched one by one under it.
   const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");

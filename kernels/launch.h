@@ -79,15 +79,20 @@ void launch_compact_points(DeviceSpan<const Vec2> in, DeviceSpan<const uint8_t> 
 
 // ---- forces.cu: steps 4-8 -----------------------------------------------------------------------
 
-// Step 4: length and midpoint size of each bar (stored where the spans are not empty);
-// per-block partial sums of L^2 and h^2.
+// Step 4: length and midpoint size of each bar (stored where the spans are not empty), and
+// scale[0] = fscale * sqrt(sum L^2 / sum h^2) and scale[1] = sum h^2, the blocks' partial sums
+// added in a fixed order. `partial` holds measure_bars_blocks(bars) entries; `ticket` is 0 before
+// a launch and after it (one per stream: it counts the blocks done).
+struct BarsMeasure {
+  BarSums* partial;
+  unsigned* ticket;
+  double fscale;
+  double* scale;
+};
+int64_t measure_bars_blocks(int64_t bars);
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
-                         DeviceSpan<BarSums> partial, cudaStream_t stream);
-// scale[0] = fscale * sqrt(sum L^2 / sum h^2) and scale[1] = sum h^2, summing the partials in a
-// fixed order.
-void launch_finish_scale(DeviceSpan<const BarSums> partial, double fscale, double* scale,
-                         cudaStream_t stream);
+                         const BarsMeasure& m, cudaStream_t stream);
 
 // The alternative to the CSR gather, for comparison: each bar adds its force to its two ends
 // with float atomics (order, and so the last bits, vary from run to run). force: #2N, zeroed.
@@ -151,10 +156,12 @@ void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stre
 // The alternative to the step graph's loop where the device launches cooperatively: the batch's
 // steps in one launch of `blocks` (args.partial.size) blocks, with a grid barrier between a step's
 // moves and its end. args.partial must be followed by room for as many more partials. The same
-// bits as move_nodes and finish_step one by one.
+// bits as move_nodes and finish_step one by one. The batch's arguments come with the launch, not
+// copied to `batch` first (one call fewer a batch); the batch ends in `batch`.
 // steps_together_fit: whether `blocks` blocks of it run at once on `device`.
 bool steps_together_fit(int device, int64_t blocks);
-void launch_steps_together(StepBatch* batch, int64_t blocks, cudaStream_t stream);
+void launch_steps_together(const StepBatch& head, StepBatch* batch, int64_t blocks,
+                           cudaStream_t stream);
 // Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
 // next step, fscale * sqrt(sum L^2 / sum h^2), from the lengths that this step measured and the
 // sizes measured at the triangulation (next_scale[1]). In the step graph (`more` given), sets the
