@@ -232,6 +232,13 @@ __device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
   return k + 1 < b.limit && !b.rule.stops(r, b.first_iteration + k, b.rule.settling);
 }
 
+// The cooperative steps' argument: the batch comes with the launch.
+struct StepsTogether {
+  StepBatch head;    // the batch as the host set it up
+  StepBatch* batch;  // where it ends
+};
+static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 KiB");
+
 // A batch's steps in one cooperative launch, one block per partial, with one grid barrier a step:
 // each block keeps its own copy of the batch, moves its nodes, and after the barrier sums every
 // block's partial and ends the step on its copy (the same bits in every block, so each knows the
@@ -240,11 +247,6 @@ __device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
 // a block writing the next step's partial cannot overwrite one that a slower block still reads.
 // In place of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step
 // against 23 (with two barriers a step).
-struct StepsTogether {
-  StepBatch head;    // the batch as the host set it up
-  StepBatch* batch;  // where it ends
-};
-static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 KiB");
 __global__ void __launch_bounds__(kBlock, 3)
     steps_together(const __grid_constant__ StepsTogether t) {
   const cg::grid_group grid = cg::this_grid();
