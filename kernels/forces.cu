@@ -315,12 +315,10 @@ __global__ void mark_crowded(DeviceSpan<const Bar> bars, DeviceSpan<const double
 
 }  // namespace
 
-int64_t measure_bars_blocks(int64_t bars) { return std::max<int64_t>(1, reduce_blocks_for(bars)); }
-
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                          const BarsMeasure& m, cudaStream_t stream) {
-  const int64_t blocks = measure_bars_blocks(bars.size);
+  const int64_t blocks = nonempty_reduce_blocks_for(bars.size);
   if (uniform)
     measure_bars<true><<<blocks, kBlock, 0, stream>>>(p, bars, fh, length, size, m);
   else

@@ -67,7 +67,8 @@ int gpu_device_count() {
 
 void share_gpus_among_engines() {
   setenv("CUDA_MODULE_LOADING", "EAGER", /*overwrite=*/0);
-  for (int d = 0; d < gpu_device_count(); ++d) {
+  const int devices = gpu_device_count();
+  for (int d = 0; d < devices; ++d) {
     MESHD_CUDA_CHECK(cudaSetDevice(d));
     MESHD_CUDA_CHECK(cudaSetDeviceFlags(cudaDeviceScheduleYield));
   }
@@ -354,7 +355,7 @@ struct GpuEngine::Impl {
     const bool store_size = for_density_control || !uniform;
     length.resize(for_density_control ? nb : 0);
     size.resize(store_size ? nb : 0);
-    bar_partial.resize(gpu::measure_bars_blocks(nb));
+    bar_partial.resize(gpu::nonempty_reduce_blocks_for(nb));
     scale.resize(2);
     gpu::launch_measure_bars(
         p.span(), bars.span(), fh, uniform, length.span(), size.span(),

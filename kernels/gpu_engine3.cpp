@@ -8,6 +8,7 @@
 #include "kernels/device_buffer.h"
 #include "kernels/device_program3.h"
 #include "kernels/flip_repair3.h"
+#include "kernels/launch.h"
 #include "kernels/launch3d.h"
 #include "kernels/pinned_value.h"
 
@@ -96,8 +97,8 @@ void GpuEngine3::start(Nodes3& nodes, const Topology3& topology) {
   s.bar_ends.upload(topology.bar_ends.data(), topology.bar_ends.size(), s.stream);
   s.length.resize(topology.bars.size());
   s.bar_size.resize(topology.bars.size());
-  s.bar_partial.resize(gpu::reduce_blocks3(static_cast<int64_t>(topology.bars.size())));
-  s.step_partial.resize(gpu::reduce_blocks3(static_cast<int64_t>(n)));
+  s.bar_partial.resize(gpu::nonempty_reduce_blocks_for(static_cast<int64_t>(topology.bars.size())));
+  s.step_partial.resize(gpu::nonempty_reduce_blocks_for(static_cast<int64_t>(n)));
   // The uploads read the caller's vectors, which may change once this returns.
   MESHD_CUDA_CHECK(cudaStreamSynchronize(s.stream));
 }

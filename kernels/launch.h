@@ -38,6 +38,8 @@ constexpr int64_t kMaxReduceBlocks = 1024;
 inline int64_t reduce_blocks_for(int64_t n) {
   return n < kBlock * kMaxReduceBlocks ? blocks_for(n) : kMaxReduceBlocks;
 }
+// The same, but at least one block: for a reduction that writes its total (zero) over no items.
+inline int64_t nonempty_reduce_blocks_for(int64_t n) { return n > 0 ? reduce_blocks_for(n) : 1; }
 
 struct BarSums {
   double l2;  // sum of L^2
@@ -81,15 +83,14 @@ void launch_compact_points(DeviceSpan<const Vec2> in, DeviceSpan<const uint8_t> 
 
 // Step 4: length and midpoint size of each bar (stored where the spans are not empty), and
 // scale[0] = fscale * sqrt(sum L^2 / sum h^2) and scale[1] = sum h^2, the blocks' partial sums
-// added in a fixed order. `partial` holds measure_bars_blocks(bars) entries; `ticket` is 0 before
-// a launch and after it (one per stream: it counts the blocks done).
+// added in a fixed order. `partial` holds nonempty_reduce_blocks_for(bars) entries; `ticket` is 0
+// before a launch and after it (one per stream: it counts the blocks done).
 struct BarsMeasure {
   BarSums* partial;
   unsigned* ticket;
   double fscale;
   double* scale;
 };
-int64_t measure_bars_blocks(int64_t bars);
 void launch_measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
                          bool uniform, DeviceSpan<double> length, DeviceSpan<double> size,
                          const BarsMeasure& m, cudaStream_t stream);

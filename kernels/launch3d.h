@@ -30,7 +30,7 @@ struct StepSums3 {
 };
 
 // Step 4: every bar's length and size at its midpoint (h = 1 unless `graded`), and the blocks'
-// partial sums (partial: reduce_blocks3(bars.size) entries).
+// partial sums (partial: nonempty_reduce_blocks_for(bars.size) entries, launch.h).
 void launch_measure_bars3(DeviceSpan<const Vec3> p, DeviceSpan<const Bar3> bars, SizeField3View fh,
                           bool graded, DeviceSpan<double> length, DeviceSpan<double> size,
                           DeviceSpan<BarSums3> partial, cudaStream_t stream);
@@ -55,7 +55,7 @@ struct MoveArgs3 {
   double inside;  // -geps h0: a node deeper than this is interior
   double deps;    // the gradient's step, absolute
   double h0;
-  DeviceSpan<StepSums3> partial;  // reduce_blocks3(p.size) entries
+  DeviceSpan<StepSums3> partial;  // nonempty_reduce_blocks_for(p.size) entries
 };
 // Steps 5, 7 and 8 per node (step3d.h): the gathered bar forces, the move, the projection, the
 // measures' partials.
@@ -69,9 +69,5 @@ void launch_finish_step3(DeviceSpan<const StepSums3> partial, StepResult* result
 void launch_mark_crowded3(DeviceSpan<const Bar3> bars, DeviceSpan<const double> length,
                           DeviceSpan<const double> size, const double* scale, int64_t fixed,
                           DeviceSpan<uint8_t> flags, cudaStream_t stream);
-
-// Blocks, and so partials, of a reduction over n items: a function of n alone, so that the sums
-// run in the same order every run.
-int64_t reduce_blocks3(int64_t n);
 
 }  // namespace meshd::gpu

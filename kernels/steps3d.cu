@@ -145,8 +145,6 @@ __global__ void mark_crowded3(DeviceSpan<const Bar3> bars, DeviceSpan<const doub
 
 }  // namespace
 
-int64_t reduce_blocks3(int64_t n) { return n > 0 ? reduce_blocks_for(n) : 1; }
-
 void launch_measure_bars3(DeviceSpan<const Vec3> p, DeviceSpan<const Bar3> bars, SizeField3View fh,
                           bool graded, DeviceSpan<double> length, DeviceSpan<double> size,
                           DeviceSpan<BarSums3> partial, cudaStream_t stream) {
