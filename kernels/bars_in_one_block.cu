@@ -38,6 +38,11 @@ __global__ void __launch_bounds__(kOneBlockThreads) bars_in_one_block(OneBlockBa
   if (threadIdx.x == 0) {
     a.totals[0] = bar_count;
     a.totals[1] = kept_count;
+    if (a.host_totals != nullptr) {
+      a.host_totals[0] = bar_count;
+      a.host_totals[1] = kept_count;
+    }
+    if (a.host_counters != nullptr) *a.host_counters = *a.counters;
   }
   __syncthreads();
 

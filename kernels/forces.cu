@@ -28,24 +28,20 @@ struct StepOp {
   }
 };
 
-// Uniform is a template parameter: without the size evaluator the kernel fits 32 registers and
-// eight blocks per SM, so that its kMaxReduceBlocks blocks run as one wave.
-// The last block to finish sums the blocks' partials, in the order of their indices whichever
-// block that is, and writes the scale: one launch where a second, one block's, cost a small job
-// one more of the calls that bound many small jobs at once (bench/RESULTS.md).
+using BarReduce = cub::BlockReduce<BarSums, kBlock>;
+
+// Block `block` of `blocks` of the bars' measure (step 4): its bars' lengths and sizes, stored
+// where given (size > 0: the step needs the sizes of a graded field, density control needs both),
+// and their sums, whole on thread 0. measure_bars runs one such block a block; the cooperative
+// steps run every block's in turn, so that both give the partials the same bits.
 template <bool kUniform>
-__global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
-    measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
-                 DeviceSpan<double> length, DeviceSpan<double> size, BarsMeasure m) {
-  // length and size are written only where given (size > 0): the step needs the sizes of a
-  // graded field, density control needs both.
-  using Reduce = cub::BlockReduce<BarSums, kBlock>;
-  __shared__ typename Reduce::TempStorage temp;
-  __shared__ bool last;
+__device__ BarSums measure_block(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars,
+                                 const SizeView& fh, DeviceSpan<double> length,
+                                 DeviceSpan<double> size, int64_t block, int64_t blocks,
+                                 BarReduce::TempStorage& temp) {
   BarSums sums{0.0, 0.0};
-  const int64_t stride = static_cast<int64_t>(gridDim.x) * blockDim.x;
-  for (int64_t b = blockIdx.x * static_cast<int64_t>(blockDim.x) + threadIdx.x; b < bars.size;
-       b += stride) {
+  const int64_t stride = blocks * kBlock;
+  for (int64_t b = block * kBlock + threadIdx.x; b < bars.size; b += stride) {
     const Vec2 a = p[bars[b].a], e = p[bars[b].b];
     const double len = norm(a - e);
     double h = 1.0;
@@ -54,7 +50,34 @@ __global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
     if (size.size > 0) size[b] = h;
     sums = SumPair{}(sums, {len * len, h * h});
   }
-  const BarSums block_total = Reduce(temp).Reduce(sums, SumPair{});
+  return BarReduce(temp).Reduce(sums, SumPair{});
+}
+// The blocks' partials summed in the order of their indices, whichever block sums them; the
+// total on thread 0.
+__device__ BarSums sum_bar_partials(const BarSums* partial, int64_t blocks,
+                                    BarReduce::TempStorage& temp) {
+  BarSums sums{0.0, 0.0};
+  for (int64_t i = threadIdx.x; i < blocks; i += kBlock)
+    sums = SumPair{}(sums, {__ldcg(&partial[i].l2), __ldcg(&partial[i].h2)});
+  return BarReduce(temp).Reduce(sums, SumPair{});
+}
+__device__ double bars_scale(const BarSums& total, double fscale) {
+  return total.h2 > 0.0 ? fscale * sqrt(total.l2 / total.h2) : 0.0;
+}
+
+// Uniform is a template parameter: without the size evaluator the kernel fits 32 registers and
+// eight blocks per SM, so that its kMaxReduceBlocks blocks run as one wave.
+// The last block to finish sums the blocks' partials and writes the scale: one launch where a
+// second, one block's, cost a small job one more of the calls that bound many small jobs at once
+// (bench/RESULTS.md).
+template <bool kUniform>
+__global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
+    measure_bars(DeviceSpan<const Vec2> p, DeviceSpan<const Bar> bars, SizeView fh,
+                 DeviceSpan<double> length, DeviceSpan<double> size, BarsMeasure m) {
+  __shared__ BarReduce::TempStorage temp;
+  __shared__ bool last;
+  const BarSums block_total =
+      measure_block<kUniform>(p, bars, fh, length, size, blockIdx.x, gridDim.x, temp);
   if (threadIdx.x == 0) {
     m.partial[blockIdx.x] = block_total;
     __threadfence();  // the partial is visible before the ticket says so
@@ -62,13 +85,9 @@ __global__ void __launch_bounds__(kBlock, kUniform ? 8 : 2)
   }
   __syncthreads();
   if (!last) return;
-  sums = {0.0, 0.0};
-  for (int64_t i = threadIdx.x; i < gridDim.x; i += blockDim.x)
-    sums = SumPair{}(sums, {__ldcg(&m.partial[i].l2), __ldcg(&m.partial[i].h2)});
-  __syncthreads();  // temp is reused
-  const BarSums total = Reduce(temp).Reduce(sums, SumPair{});
+  const BarSums total = sum_bar_partials(m.partial, gridDim.x, temp);
   if (threadIdx.x != 0) return;
-  m.scale[0] = total.h2 > 0.0 ? m.fscale * sqrt(total.l2 / total.h2) : 0.0;
+  m.scale[0] = bars_scale(total, m.fscale);
   m.scale[1] = total.h2;  // for the lagged scale of the steps until the next triangulation
   *m.ticket = 0;          // for the next launch on this stream
 }
@@ -211,13 +230,12 @@ __device__ StepSums sum_step_partials(DeviceSpan<const StepSums> partial, Partia
 }
 
 // The end of a step, on one thread: its result, the lagged L0 scale for the next step (into
-// *scale), the positions swapped, the settling record carried on. Returns whether another step
-// follows: fewer than `limit` ran and the rule does not stop here.
-__device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
+// *scale) from h2, the bars' sum of h^2 as measured at the triangulation (next_scale[1]), the
+// positions swapped, the settling record carried on. Returns whether another step follows: fewer
+// than `limit` ran and the rule does not stop here.
+__device__ bool end_step(StepBatch& b, const StepSums& total, double h2, double* scale) {
   // Each bar was measured from both ends.
-  // next_scale[1] is sum h^2 over the bars, which stays as measured until the next triangulation.
-  if (b.next_scale != nullptr && b.next_scale[1] > 0.0)
-    *scale = b.fscale * sqrt(0.5 * total.bar_l2 / b.next_scale[1]);
+  if (b.next_scale != nullptr && h2 > 0.0) *scale = b.fscale * sqrt(0.5 * total.bar_l2 / h2);
   StepResult r;
   r.max_move = total.max_move;
   r.max_drift = total.max_drift;
@@ -234,8 +252,9 @@ __device__ bool end_step(StepBatch& b, const StepSums& total, double* scale) {
 
 // The cooperative steps' argument: the batch comes with the launch.
 struct StepsTogether {
-  StepBatch head;    // the batch as the host set it up
-  StepBatch* batch;  // where it ends
+  StepBatch head;        // the batch as the host set it up
+  StepBatch* batch;      // where it ends
+  StepsMeasure measure;  // the bars' measure first, where on
 };
 static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 KiB");
 
@@ -247,27 +266,56 @@ static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 K
 // a block writing the next step's partial cannot overwrite one that a slower block still reads.
 // In place of the graph loop's two launches a step: at 20k nodes on an H200, 18 us a step
 // against 23 (with two barriers a step).
+// Where the batch starts after a triangulation, the bars' measure comes first, every measure
+// block's in turn and one grid barrier; every block then sums the partials itself, in
+// measure_bars' order, so that the scale has its bits without a second barrier.
 __global__ void __launch_bounds__(kBlock, 3)
     steps_together(const __grid_constant__ StepsTogether t) {
   const cg::grid_group grid = cg::this_grid();
   __shared__ StepBatch b;
-  __shared__ StepReduce::TempStorage temp;
+  __shared__ union {
+    StepReduce::TempStorage step;
+    BarReduce::TempStorage bars;
+  } temp;
   __shared__ PartialRuns runs;
-  __shared__ double scale;
+  __shared__ double scale, h2;
   __shared__ bool more;
   static_assert(sizeof(StepBatch) % sizeof(uint64_t) == 0);
   for (size_t w = threadIdx.x; w < sizeof(StepBatch) / sizeof(uint64_t); w += blockDim.x)
     reinterpret_cast<uint64_t*>(&b)[w] = reinterpret_cast<const uint64_t*>(&t.head)[w];
   __syncthreads();
-  if (threadIdx.x == 0) scale = __ldcg(b.args.scale);
+  const StepsMeasure& m = t.measure;
+  if (m.on) {
+    for (int64_t block = blockIdx.x; block < m.blocks; block += gridDim.x) {
+      const BarSums sums = m.uniform ? measure_block<true>(b.args.p, m.bars, m.fh, {}, m.size,
+                                                           block, m.blocks, temp.bars)
+                                     : measure_block<false>(b.args.p, m.bars, m.fh, {}, m.size,
+                                                            block, m.blocks, temp.bars);
+      if (threadIdx.x == 0) m.partial[block] = sums;
+      __syncthreads();  // temp is reused
+    }
+    grid.sync();
+    const BarSums total = sum_bar_partials(m.partial, m.blocks, temp.bars);
+    if (threadIdx.x == 0) {
+      scale = bars_scale(total, b.fscale);
+      h2 = total.h2;
+      if (blockIdx.x == 0) {
+        m.scale[0] = scale;  // as measure_bars leaves them
+        m.scale[1] = h2;
+      }
+    }
+  } else if (threadIdx.x == 0) {
+    scale = __ldcg(b.args.scale);
+    h2 = b.next_scale != nullptr ? __ldcg(&b.next_scale[1]) : 0.0;
+  }
   __syncthreads();
   for (int step = 0;; ++step) {
     const DeviceSpan<StepSums> partial{b.args.partial.data + (step % 2) * b.args.partial.size,
                                        b.args.partial.size};
-    move_block_nodes(b.args, scale, partial.data, temp);
+    move_block_nodes(b.args, scale, partial.data, temp.step);
     grid.sync();
     const StepSums total = sum_step_partials(partial, runs);
-    if (threadIdx.x == 0) b.more = more = end_step(b, total, &scale);
+    if (threadIdx.x == 0) b.more = more = end_step(b, total, h2, &scale);
     __syncthreads();
     if (!more) break;
   }
@@ -300,7 +348,8 @@ __global__ void finish_step(StepBatch* batch, bool in_graph, cudaGraphConditiona
   __shared__ PartialRuns runs;
   const StepSums total = sum_step_partials(batch->args.partial, runs);
   if (threadIdx.x != 0) return;
-  const bool again = end_step(*batch, total, batch->next_scale);
+  const double h2 = batch->next_scale != nullptr ? batch->next_scale[1] : 0.0;
+  const bool again = end_step(*batch, total, h2, batch->next_scale);
   if (in_graph) cudaGraphSetConditional(more, again);
 }
 
@@ -334,9 +383,9 @@ bool steps_together_fit(int device, int64_t blocks) {
   return blocks <= cooperative_blocks(steps_together, kBlock, device);
 }
 
-void launch_steps_together(const StepBatch& head, StepBatch* batch, int64_t blocks,
-                           cudaStream_t stream) {
-  launch_cooperative(steps_together, blocks, kBlock, StepsTogether{head, batch}, stream,
+void launch_steps_together(const StepBatch& head, StepBatch* batch, const StepsMeasure& measure,
+                           int64_t blocks, cudaStream_t stream) {
+  launch_cooperative(steps_together, blocks, kBlock, StepsTogether{head, batch, measure}, stream,
                      "steps_together");
 }
 

@@ -351,15 +351,32 @@ struct GpuEngine::Impl {
   // Step 4. The step itself needs only the sizes of a graded field; density control needs the
   // lengths and sizes of every bar.
   void measure_bars(bool for_density_control) {
+    size_measure(for_density_control);
+    gpu::launch_measure_bars(
+        p.span(), bars.span(), fh, uniform, length.span(), size.span(),
+        {bar_partial.data(), bar_ticket.data(), problem->params.fscale, scale.data()}, stream);
+  }
+  // measure_bars(false) as the cooperative steps' first work: the arguments for their launch.
+  gpu::StepsMeasure measure_in_steps() {
+    return {.on = true,
+            .uniform = uniform,
+            .blocks = size_measure(false),
+            .bars = bars.span(),
+            .fh = fh,
+            .size = size.span(),
+            .partial = bar_partial.data(),
+            .scale = scale.data()};
+  }
+  // Sizes a measure's buffers; returns its blocks.
+  int64_t size_measure(bool for_density_control) {
     const int64_t nb = static_cast<int64_t>(bars.size());
     const bool store_size = for_density_control || !uniform;
     length.resize(for_density_control ? nb : 0);
     size.resize(store_size ? nb : 0);
-    bar_partial.resize(gpu::nonempty_reduce_blocks_for(nb));
+    const int64_t blocks = gpu::nonempty_reduce_blocks_for(nb);
+    bar_partial.resize(blocks);
     scale.resize(2);
-    gpu::launch_measure_bars(
-        p.span(), bars.span(), fh, uniform, length.span(), size.span(),
-        {bar_partial.data(), bar_ticket.data(), problem->params.fscale, scale.data()}, stream);
+    return blocks;
   }
 
   // Runs up to `limit` steps (4, 5, 7, 8) in one launch of the step graph; one, launched
@@ -370,9 +387,23 @@ struct GpuEngine::Impl {
   int run_steps(const StepRule& rule, int first_iteration, int limit) {
     const Params& prm = problem->params;
     const bool lagged = lagged_scale && force_sum == ForceSum::kGather && bars.size() > 0;
-    if (!(lagged && scale_lagged_ok)) measure_bars(false);
     if (!lagged || !step_graph) limit = 1;
     limit = std::min(limit, gpu::kMaxBatchSteps);
+    const int64_t blocks = std::min(gpu::blocks_for(n), step_wave);
+    // A lone step costs less launched directly than through the graph's loop (on an H200 at 1M
+    // nodes, a step of the exact scale took 119-130 us through it, 110-122 us directly).
+    // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
+    // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
+    // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
+    const bool together = step_graph && limit > 1 && steps_together && blocks < step_wave;
+    // The cooperative steps measure the bars themselves: one launch fewer a triangulation.
+    gpu::StepsMeasure measure;
+    if (!(lagged && scale_lagged_ok)) {
+      if (together)
+        measure = measure_in_steps();
+      else
+        measure_bars(false);
+    }
     if (force_sum == ForceSum::kAtomic) {
       scattered.resize(2 * n);
       MESHD_CUDA_CHECK(cudaMemsetAsync(scattered.data(), 0, 2 * n * sizeof(double), stream));
@@ -382,7 +413,6 @@ struct GpuEngine::Impl {
       scattered.resize(0);
     }
     // Twice the blocks' partials: the cooperative steps alternate between the two halves.
-    const int64_t blocks = std::min(gpu::blocks_for(n), step_wave);
     step_partial.resize(2 * blocks);
     gpu::StepBatch& b = *h_batch.get();
     gpu::MoveArgs& a = b.args;
@@ -422,26 +452,23 @@ struct GpuEngine::Impl {
     const auto copy_head = [&] {
       MESHD_CUDA_CHECK(cudaMemcpyAsync(batch.data(), &b, kHead, cudaMemcpyHostToDevice, stream));
     };
-    // A lone step costs less launched directly than through the graph's loop (on an H200 at 1M
-    // nodes, a step of the exact scale took 119-130 us through it, 110-122 us directly).
-    // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
-    // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
-    // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
-    const bool together = steps_together && blocks < step_wave;
-    if (step_graph && limit > 1 && together) {
-      gpu::launch_steps_together(b, batch.data(), blocks, stream);
-    } else if (step_graph && limit > 1) {
-      copy_head();
-      step_graph->launch(stream);
+    if (together) {
+      // The batch ends in h_batch itself: no copy back either.
+      gpu::launch_steps_together(b, &b, measure, blocks, stream);
     } else {
       copy_head();
-      gpu::launch_move_nodes(batch.data(), step_wave, stream);
-      gpu::launch_finish_step(batch.data(), nullptr, stream);
+      if (step_graph && limit > 1) {
+        step_graph->launch(stream);
+      } else {
+        gpu::launch_move_nodes(batch.data(), step_wave, stream);
+        gpu::launch_finish_step(batch.data(), nullptr, stream);
+      }
+      constexpr size_t kCount = offsetof(gpu::StepBatch, count);
+      MESHD_CUDA_CHECK(cudaMemcpyAsync(reinterpret_cast<char*>(&b) + kCount,
+                                       reinterpret_cast<const char*>(batch.data()) + kCount,
+                                       kHead - kCount + limit * sizeof(StepResult),
+                                       cudaMemcpyDeviceToHost, stream));
     }
-    constexpr size_t kCount = offsetof(gpu::StepBatch, count);
-    MESHD_CUDA_CHECK(cudaMemcpyAsync(
-        reinterpret_cast<char*>(&b) + kCount, reinterpret_cast<const char*>(batch.data()) + kCount,
-        kHead - kCount + limit * sizeof(StepResult), cudaMemcpyDeviceToHost, stream));
     sync();
     scale_lagged_ok = lagged;
     // The device swapped the positions after each step.
@@ -559,8 +586,9 @@ struct GpuEngine::Impl {
     size_bars(3 * m);
     scale_lagged_ok = false;
     launch_repair();
-    bars_in_one_block(totals.data() + 2);
-    const gpu::TopologyCounters c = read_counters();
+    bars_in_one_block(totals.data() + 2, counters.data());
+    sync();  // the bars' launch sent the counters and totals
+    const gpu::TopologyCounters c = *h_counters.get();
     built = settled_on_device(c);
     one_read_retriangulations += built;
     const int64_t flips = finish_repair(c, dropped);
@@ -798,7 +826,10 @@ struct GpuEngine::Impl {
   }
   // What filter and bars_and_csr do, in two launches: the filter's, and one block's for the rest
   // (bars_in_one_block.cu); over the first *live triangles where live is given (on the device).
-  void bars_in_one_block(const int64_t* live = nullptr) {
+  // The totals, and a repair's counters where given, reach h_totals and h_counters at the
+  // stream's next wait.
+  void bars_in_one_block(const int64_t* live = nullptr,
+                         const gpu::TopologyCounters* repair_counters = nullptr) {
     gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
                                 problem->params.geps * problem->h0, keep.span(), live, stream);
     gpu::launch_bars_in_one_block({.p = p.span(),
@@ -811,9 +842,11 @@ struct GpuEngine::Impl {
                                    .csr_other = csr_other.span(),
                                    .p_old = p_old.span(),
                                    .totals = totals.data(),
-                                   .live = live},
+                                   .live = live,
+                                   .host_totals = h_totals.get()->data(),
+                                   .counters = repair_counters,
+                                   .host_counters = repair_counters ? h_counters.get() : nullptr},
                                   stream);
-    read_totals(2);
   }
   // m rounded up by at most a sixteenth (a multiple of 256 at least).
   static int64_t padded_rows(int64_t m) {

@@ -158,11 +158,24 @@ void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stre
 // steps in one launch of `blocks` (args.partial.size) blocks, with a grid barrier between a step's
 // moves and its end. args.partial must be followed by room for as many more partials. The same
 // bits as move_nodes and finish_step one by one. The batch's arguments come with the launch, not
-// copied to `batch` first (one call fewer a batch); the batch ends in `batch`.
+// copied to `batch` first (one call fewer a batch); the batch ends in `batch`, which may be the
+// host's pinned memory (no copy back).
 // steps_together_fit: whether `blocks` blocks of it run at once on `device`.
+// Where `measure.on`, the launch first measures the bars as launch_measure_bars would (with the
+// same bits; length not stored), into measure.scale, which must be args.scale.
+struct StepsMeasure {
+  bool on = false;
+  bool uniform = true;
+  int64_t blocks = 0;  // nonempty_reduce_blocks_for(bars.size) partials
+  DeviceSpan<const Bar> bars;
+  SizeView fh{};
+  DeviceSpan<double> size;  // where not empty, each bar's size (a graded field's)
+  BarSums* partial = nullptr;
+  double* scale = nullptr;
+};
 bool steps_together_fit(int device, int64_t blocks);
-void launch_steps_together(const StepBatch& head, StepBatch* batch, int64_t blocks,
-                           cudaStream_t stream);
+void launch_steps_together(const StepBatch& head, StepBatch* batch, const StepsMeasure& measure,
+                           int64_t blocks, cudaStream_t stream);
 // Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
 // next step, fscale * sqrt(sum L^2 / sum h^2), from the lengths that this step measured and the
 // sizes measured at the triangulation (next_scale[1]). In the step graph (`more` given), sets the
@@ -285,6 +298,11 @@ struct OneBlockBars {
   DeviceSpan<Vec2> p_old;                    // #N: set to p, the positions at this triangulation
   int64_t* totals;                           // [0] the bars, [1] the kept triangles
   const int64_t* live = nullptr;             // the triangles' count on the device (null: #M)
+  // Sent to the host's pinned memory at the end, so that the host reads them after its wait with
+  // no copy of its own (null: not sent): totals[0..1], and *counters (a repair's, before this).
+  int64_t* host_totals = nullptr;
+  const TopologyCounters* counters = nullptr;
+  TopologyCounters* host_counters = nullptr;
 };
 void launch_bars_in_one_block(const OneBlockBars& a, cudaStream_t stream);
 

@@ -1,4 +1,6 @@
-// Pinned host memory for the few scalars an engine reads from the device every step.
+// Pinned host memory for the few scalars an engine reads from the device every step. With
+// unified addressing (every 64-bit platform CUDA supports) a kernel may also write it directly,
+// through the same pointer: what the host reads after its next wait then needs no copy.
 #pragma once
 
 #include <cuda_runtime.h>
