@@ -1,11 +1,15 @@
-// The bars of a small triangulation, once the centroid filter has run, in one launch: the bars at
-// the scan of their counts, and their CSR by counting, phase after phase in one block with block
-// barriers between them, by the rules the kernels one by one follow (bar_rules.cuh), and so with
-// the same bits. A small job rebuilds its bars a few dozen times, and one by one each build was a
-// dozen launches of a few microseconds' work; with many small jobs on one device, their launches
-// rather than their work had filled it. The filter keeps a grid of its own: one block evaluating
-// every centroid's distance took plate_with_holes' builds at 2k nodes from 65 to 103 us.
+// A small triangulation's centroid filter and bars in one launch: the filter over a grid, then,
+// in the last of its blocks to finish, the bars at the scan of their counts and their CSR by
+// counting, phase after phase in one block with block barriers between them, by the rules the
+// kernels one by one follow (centroid_rule.cuh, bar_rules.cuh), and so with the same bits. A
+// small job rebuilds its bars a few dozen times, and one by one each build was a dozen launches
+// of a few microseconds' work; with many small jobs on one device, their launches rather than
+// their work had filled it. The filter keeps a grid: one block evaluating every centroid's
+// distance took plate_with_holes' builds at 2k nodes from 65 to 103 us.
+#include <algorithm>
+
 #include "kernels/bar_rules.cuh"
+#include "kernels/centroid_rule.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
 #include "kernels/one_block.cuh"
@@ -13,10 +17,26 @@
 namespace meshd::gpu {
 namespace {
 
-__global__ void __launch_bounds__(kOneBlockThreads) bars_in_one_block(OneBlockBars a) {
+__global__ void __launch_bounds__(kOneBlockThreads) filter_and_bars(OneBlockBars a) {
+  const int64_t m = a.live != nullptr ? *a.live : a.tris.size, n = a.p.size;
+  // The filter: a row a thread over the grid.
+  const int64_t row = static_cast<int64_t>(blockIdx.x) * kOneBlockThreads + threadIdx.x;
+  if (row < a.tris.size) {
+    a.keep[row] = row < m && centroid_kept(a.filter, a.p, a.tris[row]);
+    __threadfence();  // visible to the last block before its ticket is drawn
+  }
+  __syncthreads();
+  __shared__ bool last;
+  if (threadIdx.x == 0) {
+    last = atomicAdd(a.ticket, 1u) == gridDim.x - 1;
+    if (last) *a.ticket = 0;  // for the next launch on this stream
+    __threadfence();          // the other blocks' rows read after their ticket, as grid.sync does
+  }
+  __syncthreads();
+  if (!last) return;
+
   __shared__ StripeScanStorage scan;
   __shared__ int32_t degree[kOneBlockRows];  // n + 1 of them, counted up and then down
-  const int64_t m = a.live != nullptr ? *a.live : a.tris.size, n = a.p.size;
   for (int64_t i = threadIdx.x; i <= n; i += kOneBlockThreads) degree[i] = 0;
 
   // The kept triangles, counted.
@@ -80,9 +100,11 @@ __global__ void __launch_bounds__(kOneBlockThreads) bars_in_one_block(OneBlockBa
 
 }  // namespace
 
-void launch_bars_in_one_block(const OneBlockBars& a, cudaStream_t stream) {
-  bars_in_one_block<<<1, kOneBlockThreads, 0, stream>>>(a);
-  MESHD_CHECK_LAUNCH("bars_in_one_block");
+void launch_filter_and_bars(const OneBlockBars& a, cudaStream_t stream) {
+  const int64_t blocks =
+      std::max<int64_t>(1, (a.tris.size + kOneBlockThreads - 1) / kOneBlockThreads);
+  filter_and_bars<<<blocks, kOneBlockThreads, 0, stream>>>(a);
+  MESHD_CHECK_LAUNCH("filter_and_bars");
 }
 
 }  // namespace meshd::gpu

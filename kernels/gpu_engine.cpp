@@ -195,7 +195,9 @@ struct GpuEngine::Impl {
   bool scale_lagged_ok = false;  // scale holds the last step's measure of the current bars
   DeviceBuffer<int32_t> csr_offset, csr_entry, csr_other, degree;
   DeviceBuffer<BarSums> bar_partial;
-  DeviceBuffer<unsigned> bar_ticket;  // measure_bars' count of blocks done, 0 between launches
+  // The blocks done of a kernel whose last block finishes its work (measure_bars, filter_and_bars);
+  // 0 between launches, which run one after the other on the stream.
+  DeviceBuffer<unsigned> last_block_ticket;
   DeviceBuffer<StepSums> step_partial;
   int64_t step_wave = 1;                       // move_nodes_wave
   DeviceBuffer<gpu::StepBatch> batch;          // one, for the step graph
@@ -354,7 +356,8 @@ struct GpuEngine::Impl {
     size_measure(for_density_control);
     gpu::launch_measure_bars(
         p.span(), bars.span(), fh, uniform, length.span(), size.span(),
-        {bar_partial.data(), bar_ticket.data(), problem->params.fscale, scale.data()}, stream);
+        {bar_partial.data(), last_block_ticket.data(), problem->params.fscale, scale.data()},
+        stream);
   }
   // measure_bars(false) as the cooperative steps' first work: the arguments for their launch.
   gpu::StepsMeasure measure_in_steps() {
@@ -781,8 +784,8 @@ struct GpuEngine::Impl {
     return static_cast<int32_t>(flip_ids.size());
   }
 
-  // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in two
-  // launches, the filter's and one block's (bars_in_one_block.cu). One of up to replayed_triangles
+  // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in one
+  // launch (bars_in_one_block.cu). One of up to replayed_triangles
   // runs them as one graph (bars_graph) over room for a few more triangles (padded_rows), with room
   // for three bars a triangle, so that nothing waits for their count and the graph serves the
   // repairs that follow, each dropping a few triangles. A larger one waits for the count, so that
@@ -824,29 +827,31 @@ struct GpuEngine::Impl {
     keep.resize(m);  // the same memory
     return bars_sizes();
   }
-  // What filter and bars_and_csr do, in two launches: the filter's, and one block's for the rest
-  // (bars_in_one_block.cu); over the first *live triangles where live is given (on the device).
+  // What filter and bars_and_csr do, in one launch: the filter's grid, whose last block builds
+  // the bars (bars_in_one_block.cu); over the first *live triangles where live is given (on the
+  // device).
   // The totals, and a repair's counters where given, reach h_totals and h_counters at the
   // stream's next wait.
   void bars_in_one_block(const int64_t* live = nullptr,
                          const gpu::TopologyCounters* repair_counters = nullptr) {
-    gpu::launch_centroid_filter(p.span(), clearance.span(), clear, tris.span(), fd, nested_index,
-                                problem->params.geps * problem->h0, keep.span(), live, stream);
-    gpu::launch_bars_in_one_block({.p = p.span(),
-                                   .tris = tris.span(),
-                                   .nbrs = nbrs.span(),
-                                   .keep = keep.span(),
-                                   .bars = bars.span(),
-                                   .csr_offset = csr_offset.span(),
-                                   .csr_entry = csr_entry.span(),
-                                   .csr_other = csr_other.span(),
-                                   .p_old = p_old.span(),
-                                   .totals = totals.data(),
-                                   .live = live,
-                                   .host_totals = h_totals.get()->data(),
-                                   .counters = repair_counters,
-                                   .host_counters = repair_counters ? h_counters.get() : nullptr},
-                                  stream);
+    gpu::launch_filter_and_bars(
+        {.p = p.span(),
+         .tris = tris.span(),
+         .nbrs = nbrs.span(),
+         .filter = {clearance.span(), clear, fd, nested_index, problem->params.geps * problem->h0},
+         .keep = keep.span(),
+         .ticket = last_block_ticket.data(),
+         .bars = bars.span(),
+         .csr_offset = csr_offset.span(),
+         .csr_entry = csr_entry.span(),
+         .csr_other = csr_other.span(),
+         .p_old = p_old.span(),
+         .totals = totals.data(),
+         .live = live,
+         .host_totals = h_totals.get()->data(),
+         .counters = repair_counters,
+         .host_counters = repair_counters ? h_counters.get() : nullptr},
+        stream);
   }
   // m rounded up by at most a sixteenth (a multiple of 256 at least).
   static int64_t padded_rows(int64_t m) {
@@ -957,8 +962,9 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
   impl_->flip_batch.resize(1);
   MESHD_CUDA_CHECK(
       cudaMemsetAsync(impl_->flip_batch.data(), 0, sizeof(gpu::FlipBatch), impl_->stream));
-  impl_->bar_ticket.resize(1);
-  MESHD_CUDA_CHECK(cudaMemsetAsync(impl_->bar_ticket.data(), 0, sizeof(unsigned), impl_->stream));
+  impl_->last_block_ticket.resize(1);
+  MESHD_CUDA_CHECK(
+      cudaMemsetAsync(impl_->last_block_ticket.data(), 0, sizeof(unsigned), impl_->stream));
   // compute-sanitizer's racecheck crashes on graphs with conditional nodes: the variable runs the
   // same kernels launched one by one under it.
   const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");

@@ -249,6 +249,14 @@ void launch_hull_turns(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
 void launch_mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
                                   DeviceSpan<const uint8_t> keep, ProgramView fd, double geps,
                                   int64_t nfix, DeviceSpan<uint8_t> node_keep, cudaStream_t stream);
+// The centroid filter's inputs besides the points and triangles (centroid_rule.cuh).
+struct CentroidFilter {
+  DeviceSpan<const float> clearance;  // #N
+  ClearanceRule clear;
+  ProgramView fd;
+  bool nested_index;
+  double geps;
+};
 // keep[t] = fd(centroid) < -geps, decided by the nodes' clearances where they can. The three
 // below take `live` (device memory; null: every row): rows from *live on are room past the
 // triangulation, with keep and count 0 and no bars, so that a graph sized for the room serves a
@@ -275,23 +283,26 @@ void launch_fill_csr(DeviceSpan<const Bar> bars, const int64_t* bar_count,
                      DeviceSpan<const int32_t> csr_offset, DeviceSpan<int32_t> degree,
                      DeviceSpan<int32_t> csr_entry, DeviceSpan<int32_t> other, cudaStream_t stream);
 
-// ---- bars_in_one_block.cu: a small triangulation's bars in one launch ---------------------------
+// ---- bars_in_one_block.cu: a small triangulation's filter and bars in one launch ----------------
 
 // A small triangulation, of up to this many triangles, takes its repair (flip_round.h), its
 // compaction (keep_triangles.h) and its bars (below) in one launch of one block each, the repair
 // and compaction of a partial retriangulation in one (flip_round.h's OneBlockRepair);
 // one_block.cuh: a block of 1,024 threads holds it in eight rows a thread.
 constexpr int64_t kOneBlockRows = 8192;
-// What count and write the bars, count_bar_ends, fill_csr and the kept triangles' scan do one by
-// one after the centroid filter, with the same bits: for up to kOneBlockRows triangles over fewer
-// nodes.
+// What the centroid filter, then count and write the bars, count_bar_ends, fill_csr and the kept
+// triangles' scan do one by one, with the same bits: for up to kOneBlockRows triangles over fewer
+// nodes. The filter runs on a grid (a block a kOneBlockThreads rows); the last of its blocks to
+// finish builds the bars.
 inline bool bars_fit_one_block(int64_t rows, int64_t n) {
   return rows <= kOneBlockRows && n < kOneBlockRows;
 }
 struct OneBlockBars {
   DeviceSpan<const Vec2> p;                  // #N
   DeviceSpan<const Tri> tris, nbrs;          // #M
-  DeviceSpan<const uint8_t> keep;            // #M, the centroid filter's
+  CentroidFilter filter;                     //
+  DeviceSpan<uint8_t> keep;                  // #M, the filter's
+  unsigned* ticket;                          // the filter's blocks done: 0 before and after
   DeviceSpan<Bar> bars;                      // room for every bar: three a triangle
   DeviceSpan<int32_t> csr_offset;            // #N + 1
   DeviceSpan<int32_t> csr_entry, csr_other;  // two a bar
@@ -304,6 +315,6 @@ struct OneBlockBars {
   const TopologyCounters* counters = nullptr;
   TopologyCounters* host_counters = nullptr;
 };
-void launch_bars_in_one_block(const OneBlockBars& a, cudaStream_t stream);
+void launch_filter_and_bars(const OneBlockBars& a, cudaStream_t stream);
 
 }  // namespace meshd::gpu

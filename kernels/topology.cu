@@ -5,6 +5,7 @@
 #include "core/distmesh/boundary_sliver.cuh"
 #include "core/geometry/sdf_eval.cuh"
 #include "kernels/bar_rules.cuh"
+#include "kernels/centroid_rule.cuh"
 #include "kernels/cuda_check.h"
 #include "kernels/launch.h"
 #include "kernels/orientation_check.cuh"
@@ -86,21 +87,12 @@ __device__ inline bool past_live(int64_t t, const int64_t* live) {
   return live != nullptr && t >= *live;
 }
 
-__global__ void centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> clearance,
-                                ClearanceRule clear, DeviceSpan<const Tri> tris, ProgramView fd,
-                                bool nested_index, double geps, DeviceSpan<uint8_t> keep,
+__global__ void centroid_filter(DeviceSpan<const Vec2> p, CentroidFilter filter,
+                                DeviceSpan<const Tri> tris, DeviceSpan<uint8_t> keep,
                                 const int64_t* live) {
   const int64_t t = thread_index();
   if (t >= tris.size) return;
-  if (past_live(t, live)) {
-    keep[t] = 0;
-    return;
-  }
-  const Tri tri = tris[t];
-  const Vec2 v[3] = {p[tri.v[0]], p[tri.v[1]], p[tri.v[2]]};
-  const float c[3] = {clearance[tri.v[0]], clearance[tri.v[1]], clearance[tri.v[2]]};
-  const Vec2 centroid = (1.0 / 3.0) * (v[0] + v[1] + v[2]);
-  keep[t] = clear.centroid_inside(c, v, centroid) || eval_sdf(fd, centroid, nested_index) < -geps;
+  keep[t] = !past_live(t, live) && centroid_kept(filter, p, tris[t]);
 }
 
 __global__ void mark_boundary_slivers(DeviceSpan<const Vec2> p, DeviceSpan<const Tri> tris,
@@ -240,8 +232,8 @@ void launch_centroid_filter(DeviceSpan<const Vec2> p, DeviceSpan<const float> cl
                             bool nested_index, double geps, DeviceSpan<uint8_t> keep,
                             const int64_t* live, cudaStream_t stream) {
   if (tris.size == 0) return;
-  centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(p, clearance, clear, tris, fd,
-                                                                nested_index, geps, keep, live);
+  centroid_filter<<<blocks_for(tris.size), kBlock, 0, stream>>>(
+      p, {clearance, clear, fd, nested_index, geps}, tris, keep, live);
   MESHD_CHECK_LAUNCH("centroid_filter");
 }
 
