@@ -230,12 +230,12 @@ __device__ StepSums sum_step_partials(DeviceSpan<const StepSums> partial, Partia
 }
 
 // The end of a step, on one thread: its result, the lagged L0 scale for the next step (into
-// *scale) from h2, the bars' sum of h^2 as measured at the triangulation (next_scale[1]), the
-// positions swapped, the settling record carried on. Returns whether another step follows: fewer
-// than `limit` ran and the rule does not stop here.
+// *scale) from h2, the bars' sum of h^2 as measured at the triangulation (next_scale[1]; 0 where
+// there is no lagged scale), the positions swapped, the settling record carried on. Returns
+// whether another step follows: fewer than `limit` ran and the rule does not stop here.
 __device__ bool end_step(StepBatch& b, const StepSums& total, double h2, double* scale) {
   // Each bar was measured from both ends.
-  if (b.next_scale != nullptr && h2 > 0.0) *scale = b.fscale * sqrt(0.5 * total.bar_l2 / h2);
+  if (h2 > 0.0) *scale = b.fscale * sqrt(0.5 * total.bar_l2 / h2);
   StepResult r;
   r.max_move = total.max_move;
   r.max_drift = total.max_drift;
@@ -299,10 +299,9 @@ __global__ void __launch_bounds__(kBlock, 3)
     if (threadIdx.x == 0) {
       scale = bars_scale(total, b.fscale);
       h2 = total.h2;
-      if (blockIdx.x == 0) {
-        m.scale[0] = scale;  // as measure_bars leaves them
-        m.scale[1] = h2;
-      }
+      // For the batches until the next triangulation, as measure_bars leaves it; block 0 writes
+      // next_scale[0] when the batch ends.
+      if (blockIdx.x == 0 && b.next_scale != nullptr) b.next_scale[1] = h2;
     }
   } else if (threadIdx.x == 0) {
     scale = __ldcg(b.args.scale);

@@ -367,8 +367,7 @@ struct GpuEngine::Impl {
             .bars = bars.span(),
             .fh = fh,
             .size = size.span(),
-            .partial = bar_partial.data(),
-            .scale = scale.data()};
+            .partial = bar_partial.data()};
   }
   // Sizes a measure's buffers; returns its blocks.
   int64_t size_measure(bool for_density_control) {
@@ -785,11 +784,11 @@ struct GpuEngine::Impl {
   }
 
   // The kept triangles, their bars and the bars' CSR. A small triangulation takes them in one
-  // launch (bars_in_one_block.cu). One of up to replayed_triangles
-  // runs them as one graph (bars_graph) over room for a few more triangles (padded_rows), with room
-  // for three bars a triangle, so that nothing waits for their count and the graph serves the
-  // repairs that follow, each dropping a few triangles. A larger one waits for the count, so that
-  // its sort covers the bars alone, since its launches cost little beside their work.
+  // launch (bars_in_one_block.cu). One of up to replayed_triangles runs them as one graph
+  // (bars_graph) over room for a few more triangles (padded_rows), with room for three bars a
+  // triangle, so that nothing waits for their count and the graph serves the repairs that follow,
+  // each dropping a few triangles. A larger one waits for the count, so that its sort covers the
+  // bars alone, since its launches cost little beside their work.
   TopologyStats filter_and_bars() {
     const int64_t m = static_cast<int64_t>(tris.size());
     const bool one_block = one_block_topology && gpu::bars_fit_one_block(m, n);

@@ -159,10 +159,9 @@ void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stre
 // moves and its end. args.partial must be followed by room for as many more partials. The same
 // bits as move_nodes and finish_step one by one. The batch's arguments come with the launch, not
 // copied to `batch` first (one call fewer a batch); the batch ends in `batch`, which may be the
-// host's pinned memory (no copy back).
-// steps_together_fit: whether `blocks` blocks of it run at once on `device`.
-// Where `measure.on`, the launch first measures the bars as launch_measure_bars would (with the
-// same bits; length not stored), into measure.scale, which must be args.scale.
+// host's pinned memory (no copy back). Where `measure.on`, the launch first measures the bars as
+// launch_measure_bars would, with the same bits (length not stored; the sum of h^2 into
+// next_scale[1]).
 struct StepsMeasure {
   bool on = false;
   bool uniform = true;
@@ -171,8 +170,8 @@ struct StepsMeasure {
   SizeView fh{};
   DeviceSpan<double> size;  // where not empty, each bar's size (a graded field's)
   BarSums* partial = nullptr;
-  double* scale = nullptr;
 };
+// steps_together_fit: whether `blocks` blocks of it run at once on `device`.
 bool steps_together_fit(int device, int64_t blocks);
 void launch_steps_together(const StepBatch& head, StepBatch* batch, const StepsMeasure& measure,
                            int64_t blocks, cudaStream_t stream);
@@ -300,7 +299,7 @@ inline bool bars_fit_one_block(int64_t rows, int64_t n) {
 struct OneBlockBars {
   DeviceSpan<const Vec2> p;                  // #N
   DeviceSpan<const Tri> tris, nbrs;          // #M
-  CentroidFilter filter;                     //
+  CentroidFilter filter;                     // the filter's other inputs
   DeviceSpan<uint8_t> keep;                  // #M, the filter's
   unsigned* ticket;                          // the filter's blocks done: 0 before and after
   DeviceSpan<Bar> bars;                      // room for every bar: three a triangle
