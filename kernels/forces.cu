@@ -252,9 +252,10 @@ __device__ bool end_step(StepBatch& b, const StepSums& total, double h2, double*
 
 // The cooperative steps' argument: the batch comes with the launch.
 struct StepsTogether {
-  StepBatch head;        // the batch as the host set it up
-  StepBatch* batch;      // where it ends
-  StepsMeasure measure;  // the bars' measure first, where on
+  StepBatch head;                  // the batch as the host set it up
+  StepBatch* batch;                // where it ends
+  StepsMeasure measure;            // the bars' measure first, where on
+  const TopologyCounters* repair;  // where given, the repair the steps ride behind
 };
 static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 KiB");
 
@@ -269,8 +270,13 @@ static_assert(sizeof(StepsTogether) <= 4096, "a kernel's parameters: at most 4 K
 // Where the batch starts after a triangulation, the bars' measure comes first, every measure
 // block's in turn and one grid barrier; every block then sums the partials itself, in
 // measure_bars' order, so that the scale has its bits without a second barrier.
+// Behind a repair whose outcome the host has not read yet, the steps run where it settled on the
+// device: one wait for both where the host would wait for each (a small job's retriangulations).
 __global__ void __launch_bounds__(kBlock, 3)
     steps_together(const __grid_constant__ StepsTogether t) {
+  // Every block reads the same counters, so all return or none, before any grid barrier. Without
+  // bars the host takes lone steps of the exact scale instead.
+  if (t.repair != nullptr && (!settled_on_device(*t.repair) || *t.measure.bar_count == 0)) return;
   const cg::grid_group grid = cg::this_grid();
   __shared__ StepBatch b;
   __shared__ union {
@@ -286,16 +292,19 @@ __global__ void __launch_bounds__(kBlock, 3)
   __syncthreads();
   const StepsMeasure& m = t.measure;
   if (m.on) {
-    for (int64_t block = blockIdx.x; block < m.blocks; block += gridDim.x) {
-      const BarSums sums = m.uniform ? measure_block<true>(b.args.p, m.bars, m.fh, {}, m.size,
-                                                           block, m.blocks, temp.bars)
-                                     : measure_block<false>(b.args.p, m.bars, m.fh, {}, m.size,
-                                                            block, m.blocks, temp.bars);
+    // The count on the device where the host has not read it: measure_bars' blocks for it.
+    const DeviceSpan<const Bar> bars{m.bars.data, m.bar_count ? *m.bar_count : m.bars.size};
+    const int64_t blocks = m.bar_count ? nonempty_reduce_blocks_for(bars.size) : m.blocks;
+    for (int64_t block = blockIdx.x; block < blocks; block += gridDim.x) {
+      const BarSums sums =
+          m.uniform
+              ? measure_block<true>(b.args.p, bars, m.fh, {}, m.size, block, blocks, temp.bars)
+              : measure_block<false>(b.args.p, bars, m.fh, {}, m.size, block, blocks, temp.bars);
       if (threadIdx.x == 0) m.partial[block] = sums;
       __syncthreads();  // temp is reused
     }
     grid.sync();
-    const BarSums total = sum_bar_partials(m.partial, m.blocks, temp.bars);
+    const BarSums total = sum_bar_partials(m.partial, blocks, temp.bars);
     if (threadIdx.x == 0) {
       scale = bars_scale(total, b.fscale);
       h2 = total.h2;
@@ -383,9 +392,9 @@ bool steps_together_fit(int device, int64_t blocks) {
 }
 
 void launch_steps_together(const StepBatch& head, StepBatch* batch, const StepsMeasure& measure,
-                           int64_t blocks, cudaStream_t stream) {
-  launch_cooperative(steps_together, blocks, kBlock, StepsTogether{head, batch, measure}, stream,
-                     "steps_together");
+                           int64_t blocks, cudaStream_t stream, const TopologyCounters* repair) {
+  launch_cooperative(steps_together, blocks, kBlock, StepsTogether{head, batch, measure, repair},
+                     stream, "steps_together");
 }
 
 void launch_move_nodes(const StepBatch* batch, int64_t blocks, cudaStream_t stream) {

@@ -174,7 +174,11 @@ struct GpuEngine::Impl {
   PinnedValue<std::array<int64_t, 2>> h_totals;
   PinnedValue<int64_t> h_live;            // filter_and_bars' triangles, for the device's totals[2]
   gpu::ReplayGraph bars_graph;            // filter_and_bars
-  int64_t one_read_retriangulations = 0;  // repair_and_bars' that built the bars
+  int64_t one_read_retriangulations = 0;  // end_one_block_repair's that found the bars built
+  // Steps launched behind a small retriangulation's repair (GpuEngine::retriangulate_and_move),
+  // and the batches that ran there.
+  bool steps_behind_repairs = true;
+  int64_t steps_behind_repair_batches = 0;
   int64_t replayed_triangles = kReplayedTriangles;
   // A small triangulation's repair and bars in one block's launch each (kOneBlockRows).
   bool one_block_topology = true;
@@ -387,17 +391,36 @@ struct GpuEngine::Impl {
   // topology, at the first step after a triangulation, as the CPU engine does. Returns how many
   // ran; their results are in h_batch.
   int run_steps(const StepRule& rule, int first_iteration, int limit) {
+    const bool lagged = launch_steps(rule, first_iteration, limit);
+    sync();
+    return end_steps(lagged);
+  }
+  // Whether steps keep the L0 scale of the step before (set_lagged_scale).
+  bool lagged_steps() const {
+    return lagged_scale && force_sum == ForceSum::kGather && bars.size() > 0;
+  }
+  // Whether a batch of up to `limit` steps runs in one cooperative launch. A lone step costs less
+  // launched directly than through the graph's loop (on an H200 at 1M nodes, a step of the exact
+  // scale took 119-130 us through it, 110-122 us directly). A wave of blocks or more (about 100k
+  // nodes on an H200) takes the graph's loop: there a step's work hides the loop's launches, and
+  // the cooperative kernel, all of a step's code in one, was slower on plate_with_holes at 1M
+  // nodes (110 against 104 us a step).
+  bool steps_go_together(int limit) const {
+    return lagged_steps() && step_graph && std::min(limit, gpu::kMaxBatchSteps) > 1 &&
+           steps_together && std::min(gpu::blocks_for(n), step_wave) < step_wave;
+  }
+  // run_steps' launch; returns whether the steps keep the lagged scale, for end_steps once the
+  // host has waited. `behind_repair`: the steps go together (steps_go_together), behind the
+  // repair whose counters these are and the bars it leaves, both not read yet
+  // (launch_repair_and_bars).
+  bool launch_steps(const StepRule& rule, int first_iteration, int limit,
+                    const gpu::TopologyCounters* behind_repair = nullptr) {
     const Params& prm = problem->params;
-    const bool lagged = lagged_scale && force_sum == ForceSum::kGather && bars.size() > 0;
+    const bool lagged = lagged_steps();
     if (!lagged || !step_graph) limit = 1;
     limit = std::min(limit, gpu::kMaxBatchSteps);
     const int64_t blocks = std::min(gpu::blocks_for(n), step_wave);
-    // A lone step costs less launched directly than through the graph's loop (on an H200 at 1M
-    // nodes, a step of the exact scale took 119-130 us through it, 110-122 us directly).
-    // A wave of blocks or more (about 100k nodes on an H200) takes the graph's loop: there a
-    // step's work hides the loop's launches, and the cooperative kernel, all of a step's code in
-    // one, was slower on plate_with_holes at 1M nodes (110 against 104 us a step).
-    const bool together = step_graph && limit > 1 && steps_together && blocks < step_wave;
+    const bool together = steps_go_together(limit);
     // The cooperative steps measure the bars themselves: one launch fewer a triangulation.
     gpu::StepsMeasure measure;
     if (!(lagged && scale_lagged_ok)) {
@@ -406,6 +429,8 @@ struct GpuEngine::Impl {
       else
         measure_bars(false);
     }
+    // The bars' room, sized by launch_repair_and_bars; their count is on the device.
+    if (behind_repair != nullptr) measure.bar_count = totals.data();
     if (force_sum == ForceSum::kAtomic) {
       scattered.resize(2 * n);
       MESHD_CUDA_CHECK(cudaMemsetAsync(scattered.data(), 0, 2 * n * sizeof(double), stream));
@@ -456,7 +481,7 @@ struct GpuEngine::Impl {
     };
     if (together) {
       // The batch ends in h_batch itself: no copy back either.
-      gpu::launch_steps_together(b, &b, measure, blocks, stream);
+      gpu::launch_steps_together(b, &b, measure, blocks, stream, behind_repair);
     } else {
       copy_head();
       if (step_graph && limit > 1) {
@@ -471,11 +496,31 @@ struct GpuEngine::Impl {
                                        kHead - kCount + limit * sizeof(StepResult),
                                        cudaMemcpyDeviceToHost, stream));
     }
-    sync();
-    scale_lagged_ok = lagged;
+    return lagged;
+  }
+  // After the wait for launch_steps: how many steps ran (none behind a repair that did not settle,
+  // which leaves the batch as the host set it); their results are in h_batch.
+  int end_steps(bool lagged) {
+    const gpu::StepBatch& b = *h_batch.get();
+    scale_lagged_ok = lagged && b.count > 0;
     // The device swapped the positions after each step.
     if (b.count % 2 == 1) std::swap(p, p_next);
     return b.count;
+  }
+  // Batches of steps until `limit` ran or the rule stops (GpuEngine::move_points_until), the
+  // results appended to `steps`; the first batch's `ran` steps are in h_batch already where not 0.
+  void steps_until(const StepRule& rule, int first_iteration, int limit,
+                   std::vector<StepResult>& steps, int ran) {
+    StepRule batch_rule = rule;  // its settling carried from batch to batch
+    for (int done = 0; done < limit; ran = 0) {
+      if (ran == 0) ran = run_steps(batch_rule, first_iteration + done, limit - done);
+      const StepResult* results = h_batch.get()->results;
+      steps.insert(steps.end(), results, results + ran);
+      done += ran;
+      for (int k = 0; k < ran; ++k)
+        batch_rule.settling = rule.settle(batch_rule.settling, results[k]);
+      if (rule.stops(steps.back(), first_iteration + done - 1, batch_rule.settling)) return;
+    }
   }
 
   // ---- Step 3 ----
@@ -580,22 +625,46 @@ struct GpuEngine::Impl {
   bool one_block_retriangulation() const {
     return one_block_topology && gpu::bars_fit_one_block(static_cast<int64_t>(tris.size()), n);
   }
-  // repair_folds_too and filter_and_bars with one read, where the repair settles on the device
-  // (flip_round.h's OneBlockRepair); `built` tells whether it did, and the bars are built.
-  int64_t repair_and_bars(int64_t& dropped, bool& refilled, bool& built) {
+  // A partial retriangulation's repair and its filter and bars (one_block_retriangulation), as
+  // repair_folds_too and filter_and_bars with one read where the repair settles on the device
+  // (flip_round.h's OneBlockRepair). The bars' launch sends the repair's counters and its totals
+  // to the host's memory; end_one_block_repair reads them after the host's wait.
+  void launch_repair_and_bars() {
     const auto m = static_cast<int64_t>(tris.size());
     size_filter(m);
     size_bars(3 * m);
     scale_lagged_ok = false;
     launch_repair();
     bars_in_one_block(totals.data() + 2, counters.data());
-    sync();  // the bars' launch sent the counters and totals
+  }
+  // The retriangulation's outcome: where the repair did not settle on the device, its rest, a
+  // rebuild where needed, and the bars.
+  TopologyStats end_one_block_repair() {
     const gpu::TopologyCounters c = *h_counters.get();
-    built = settled_on_device(c);
+    const bool built = gpu::settled_on_device(c);
     one_read_retriangulations += built;
-    const int64_t flips = finish_repair(c, dropped);
+    TopologyStats stats;
+    int64_t flips = finish_repair(c, stats.dropped);
     if (built) keep.resize(static_cast<int64_t>(tris.size()));  // the same memory
-    return flips >= 0 ? flips : mend_folds(refilled);
+    if (flips < 0) flips = mend_folds(stats.folds_refilled);
+    if (flips < 0) {
+      stats.full = true;
+      stats.repair_failed = true;
+    } else {
+      stats.flips = flips;
+    }
+    return end_retriangulation(stats, built);
+  }
+  // A retriangulation's end: the rebuild where it is `full`, and the bars unless built.
+  TopologyStats end_retriangulation(TopologyStats stats, bool bars_built) {
+    if (stats.full) full_triangulation();
+    if (completion_failed) stats.repair_failed = true;
+    completion_failed = false;
+    have_triangulation = true;
+    const TopologyStats sizes = bars_built ? bars_sizes() : filter_and_bars();
+    stats.triangles = sizes.triangles;
+    stats.bars = sizes.bars;
+    return stats;
   }
 
   // Lawson repair on the device. Returns the flips, or -1 when a rebuild is needed; counts the
@@ -634,17 +703,13 @@ struct GpuEngine::Impl {
       run_flip_rounds(true);
     }
   }
-  // Whether a repair's rounds settled with no fatal triangle and nothing left to the host.
-  static bool settled_on_device(const gpu::TopologyCounters& c) {
-    return c.fatal == 0 && c.undecided == 0 && c.candidates == 0;
-  }
   // The repair's rest once its launch is read: more rounds where they did not settle, the dropped
   // triangles removed.
   int64_t finish_repair(const gpu::TopologyCounters c, int64_t& dropped) {
     if (c.fatal > 0) return -1;
     dropped = c.dropped;
     const int64_t alive = static_cast<int64_t>(tris.size()) - c.dropped;
-    if (small_topology() && settled_on_device(c)) {
+    if (small_topology() && gpu::settled_on_device(c)) {
       // Removed in the repair's launch, which reset their flipped_round too.
       for (DeviceBuffer<Tri>* t : {&tris, &nbrs}) t->resize(alive);  // the same memory
       if (c.dropped > 0) flipped_round.resize(alive);
@@ -968,6 +1033,9 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
   // same kernels launched one by one under it.
   const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");
   set_step_graph(graph == nullptr || std::string(graph) != "0");
+  // For comparison: a small job's steps wait for its retriangulation's outcome, as they did.
+  const char* behind = std::getenv("MESHD_GPU_STEPS_BEHIND_REPAIRS");
+  set_steps_behind_repairs(behind == nullptr || std::string(behind) != "0");
 }
 
 GpuEngine::~GpuEngine() {
@@ -1040,8 +1108,12 @@ int64_t GpuEngine::refine(const CompiledProblem& finer) {
 TopologyStats GpuEngine::retriangulate(bool full) {
   Impl& s = *impl_;
   s.use_device();
+  if (!full && s.have_triangulation && s.one_block_retriangulation()) {
+    s.launch_repair_and_bars();
+    s.sync();
+    return s.end_one_block_repair();
+  }
   TopologyStats stats;
-  bool bars_built = false;  // behind the repair, read with it (repair_and_bars)
   stats.full = full || !s.have_triangulation;
   if (stats.full && s.prepared) {
     stats.flips = s.flip_prepared();
@@ -1077,9 +1149,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
     }
     stats.repair_failed = true;
   } else if (!stats.full) {
-    const int64_t flips = s.one_block_retriangulation()
-                              ? s.repair_and_bars(stats.dropped, stats.folds_refilled, bars_built)
-                              : s.repair_folds_too(stats.dropped, stats.folds_refilled);
+    const int64_t flips = s.repair_folds_too(stats.dropped, stats.folds_refilled);
     if (flips < 0) {
       stats.full = true;
       stats.repair_failed = true;
@@ -1087,14 +1157,7 @@ TopologyStats GpuEngine::retriangulate(bool full) {
       stats.flips = flips;
     }
   }
-  if (stats.full) s.full_triangulation();
-  if (s.completion_failed) stats.repair_failed = true;
-  s.completion_failed = false;
-  s.have_triangulation = true;
-  const TopologyStats sizes = bars_built ? s.bars_sizes() : s.filter_and_bars();
-  stats.triangles = sizes.triangles;
-  stats.bars = sizes.bars;
-  return stats;
+  return s.end_retriangulation(stats, false);
 }
 
 int64_t GpuEngine::remove_crowded_points(int64_t max_removed) {
@@ -1142,16 +1205,29 @@ void GpuEngine::move_points_until(const StepRule& rule, int first_iteration, int
                                   std::vector<StepResult>& steps) {
   Impl& s = *impl_;
   s.use_device();
-  StepRule batch_rule = rule;  // its settling carried from batch to batch
-  for (int done = 0; done < limit;) {
-    const int ran = s.run_steps(batch_rule, first_iteration + done, limit - done);
-    const StepResult* results = s.h_batch.get()->results;
-    steps.insert(steps.end(), results, results + ran);
-    done += ran;
-    for (int k = 0; k < ran; ++k)
-      batch_rule.settling = rule.settle(batch_rule.settling, results[k]);
-    if (rule.stops(steps.back(), first_iteration + done - 1, batch_rule.settling)) return;
+  s.steps_until(rule, first_iteration, limit, steps, 0);
+}
+
+std::optional<TopologyStats> GpuEngine::retriangulate_and_move(const StepRule& rule,
+                                                               int first_iteration, int limit,
+                                                               std::vector<StepResult>& steps) {
+  Impl& s = *impl_;
+  s.use_device();
+  if (!s.steps_behind_repairs || !s.have_triangulation || !s.one_block_retriangulation() ||
+      !s.steps_go_together(limit))
+    return std::nullopt;
+  s.launch_repair_and_bars();
+  const bool lagged = s.launch_steps(rule, first_iteration, limit, s.counters.data());
+  s.sync();  // the repair's counters, the bars' totals and the steps' batch
+  const TopologyStats stats = s.end_one_block_repair();
+  const int ran = s.end_steps(lagged);
+  if (ran > 0) {
+    ++s.steps_behind_repair_batches;
+    s.size_measure(false);  // from the bars' room to their count
   }
+  // Where the repair did not settle on the device, the steps did not run: they follow its rest.
+  s.steps_until(rule, first_iteration, limit, steps, ran);
+  return stats;
 }
 
 int GpuEngine::preferred_batch() const { return impl_->step_graph ? gpu::kMaxBatchSteps : 1; }
@@ -1263,6 +1339,12 @@ void GpuEngine::set_steps_together(bool on) {
 
 void GpuEngine::set_replayed_triangles(int64_t triangles) { impl_->replayed_triangles = triangles; }
 void GpuEngine::set_one_block_topology(bool on) { impl_->one_block_topology = on; }
+
+void GpuEngine::set_steps_behind_repairs(bool on) { impl_->steps_behind_repairs = on; }
+
+int64_t GpuEngine::steps_behind_repair_batches() const {
+  return impl_->steps_behind_repair_batches;
+}
 int64_t GpuEngine::bars_replays() const { return impl_->bars_graph.replays(); }
 int64_t GpuEngine::one_read_retriangulations() const { return impl_->one_read_retriangulations; }
 void GpuEngine::set_lagged_scale(bool on) { impl_->lagged_scale = on; }

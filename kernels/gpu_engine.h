@@ -106,6 +106,11 @@ class GpuEngine final : public Engine {
   // its bars and CSR, run in one block's launch each (flip_round.h's and launch.h's one-block
   // forms; on by default) or as the kernels one by one and the flip loop.
   void set_one_block_topology(bool on);
+  // For tests: whether a small job's steps are launched behind its retriangulation's repair, before
+  // the host reads the repair's outcome (retriangulate_and_move; on by default), and how many
+  // batches ran there. The same bits either way.
+  void set_steps_behind_repairs(bool on);
+  int64_t steps_behind_repair_batches() const;
 
   // The host's threads for its share of the finish (kept by reference; null, the default: the
   // caller's thread alone).
@@ -122,6 +127,11 @@ class GpuEngine final : public Engine {
   StepResult move_points() override;
   void move_points_until(const StepRule& rule, int first_iteration, int limit,
                          std::vector<StepResult>& steps) override;
+  // For a small triangulation whose steps go in one cooperative launch: the repair, the bars and
+  // the steps behind them, and one wait.
+  std::optional<TopologyStats> retriangulate_and_move(const StepRule& rule, int first_iteration,
+                                                      int limit,
+                                                      std::vector<StepResult>& steps) override;
   int preferred_batch() const override;
   void remove_points(const std::vector<int32_t>& indices) override;
   int64_t remove_boundary_slivers(const CompiledProblem& problem, int64_t max_removed) override;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "core/common/hd.h"
 #include "core/common/vec2.h"
 #include "core/delaunay/tri.cuh"
 #include "core/distmesh/clearance.cuh"
@@ -20,7 +21,7 @@ namespace meshd::gpu {
 
 constexpr int kBlock = 256;
 
-inline int64_t blocks_for(int64_t n) { return (n + kBlock - 1) / kBlock; }
+MESHD_HD inline int64_t blocks_for(int64_t n) { return (n + kBlock - 1) / kBlock; }
 
 // Bits that hold every index below n: the radix sorts' key width.
 inline int bits_for(int64_t n) {
@@ -35,11 +36,13 @@ inline int bits_for(int64_t n) {
 // against 4). The grid depends only on the bar count: the same summation order, and so the same
 // bits, every run.
 constexpr int64_t kMaxReduceBlocks = 1024;
-inline int64_t reduce_blocks_for(int64_t n) {
+MESHD_HD inline int64_t reduce_blocks_for(int64_t n) {
   return n < kBlock * kMaxReduceBlocks ? blocks_for(n) : kMaxReduceBlocks;
 }
 // The same, but at least one block: for a reduction that writes its total (zero) over no items.
-inline int64_t nonempty_reduce_blocks_for(int64_t n) { return n > 0 ? reduce_blocks_for(n) : 1; }
+MESHD_HD inline int64_t nonempty_reduce_blocks_for(int64_t n) {
+  return n > 0 ? reduce_blocks_for(n) : 1;
+}
 
 struct BarSums {
   double l2;  // sum of L^2
@@ -170,11 +173,19 @@ struct StepsMeasure {
   SizeView fh{};
   DeviceSpan<double> size;  // where not empty, each bar's size (a graded field's)
   BarSums* partial = nullptr;
+  // Where given, the bars' count on the device, for a triangulation whose count the host has not
+  // read: bars and size are room, and blocks at least nonempty_reduce_blocks_for(room).
+  const int64_t* bar_count = nullptr;
 };
 // steps_together_fit: whether `blocks` blocks of it run at once on `device`.
 bool steps_together_fit(int device, int64_t blocks);
+struct TopologyCounters;  // topology.cu's, below
+// Where `repair` is given, the steps ride behind a repair whose outcome the host has not read,
+// with measure.bar_count given: they run only where it settled on the device (settled_on_device)
+// and left bars, and otherwise the batch is left as it was, with no step.
 void launch_steps_together(const StepBatch& head, StepBatch* batch, const StepsMeasure& measure,
-                           int64_t blocks, cudaStream_t stream);
+                           int64_t blocks, cudaStream_t stream,
+                           const TopologyCounters* repair = nullptr);
 // Sums the partials into the step's result and, with next_scale, the lagged L0 scale for the
 // next step, fscale * sqrt(sum L^2 / sum h^2), from the lengths that this step measured and the
 // sizes measured at the triangulation (next_scale[1]). In the step graph (`more` given), sets the
@@ -204,6 +215,10 @@ struct TopologyCounters {
   int32_t voted;      // triangles a candidate of this round voted for (flip_round.h)
   int32_t queued[2];  // triangles on the rounds' two work lists (flip_round.h)
 };
+// Whether a repair's rounds settled with no fatal triangle and nothing left to the host.
+MESHD_HD inline bool settled_on_device(const TopologyCounters& c) {
+  return c.fatal == 0 && c.undecided == 0 && c.candidates == 0;
+}
 
 // alive[t] = 0 for inverted or flat expendable triangles (outside, or boundary slivers: see
 // lawson_repair.h); counters->fatal counts the others, which call for a rebuild.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -158,7 +159,18 @@ class Loop {
   void triangulate(bool full) {
     const auto t = Clock::now();
     const TopologyStats topo = engine_.retriangulate(full);
-    const double seconds = seconds_since(t);
+    count_triangulation(topo, seconds_since(t));
+  }
+  // Step 3 and the steps after it, where the engine starts the steps behind the repair (one wait
+  // for both; their time counts as the triangulation's). Returns whether it did.
+  bool triangulate_and_move(const StepRule& rule, int it, int limit) {
+    const auto t = Clock::now();
+    const std::optional<TopologyStats> topo =
+        engine_.retriangulate_and_move(rule, it, limit, steps_);
+    if (topo) count_triangulation(*topo, seconds_since(t));
+    return topo.has_value();
+  }
+  void count_triangulation(const TopologyStats& topo, double seconds) {
     stats_.t_triangulation += seconds;
     ++stats_.retriangulations;
     if (topo.full) {
@@ -195,10 +207,13 @@ class Loop {
     while (it <= max_iterations) {
       check_cancel();
       ++iterations;
-      // 3. Retriangulate once some node drifted ttol * h0 from where it was triangulated.
-      if (rule.needs_triangulation(drift_)) triangulate(false);
+      // 3. Retriangulate once some node drifted ttol * h0 from where it was triangulated: here
+      // before density control, otherwise with the steps below.
+      const bool density_now = interval > 0 && it % interval == 0;
+      const bool retriangulate_now = rule.needs_triangulation(drift_);
+      if (retriangulate_now && density_now) triangulate(false);
       // 6. Density control.
-      if (interval > 0 && it % interval == 0) {
+      if (density_now) {
         const auto t = Clock::now();
         const int64_t removed = engine_.remove_crowded_points(max_removed());
         stats_.t_density += seconds_since(t);
@@ -216,9 +231,13 @@ class Loop {
       if (interval > 0) limit = std::min(limit, interval - it % interval);
       limit = up_to_snapshot(limit);
       steps_.clear();
-      const auto t = Clock::now();
-      engine_.move_points_until(rule, it, limit, steps_);
-      stats_.t_forces += seconds_since(t);
+      const bool with_steps = retriangulate_now && !density_now;
+      if (!with_steps || !triangulate_and_move(rule, it, limit)) {
+        if (with_steps) triangulate(false);
+        const auto t = Clock::now();
+        engine_.move_points_until(rule, it, limit, steps_);
+        stats_.t_forces += seconds_since(t);
+      }
       for (size_t k = 0; k < steps_.size(); ++k, ++it) {
         if (k > 0) {
           check_cancel();

@@ -28,7 +28,8 @@ struct RunStats {
   int64_t optimized_moves = 0;  // node moves of the worst-element optimisation
   // Seconds per phase; total is the wall time of generate_mesh. t_full_triangulation is the part
   // of t_triangulation spent in triangulations from scratch; t_finish is the last triangulation,
-  // the worst-element optimisation and the assembly of the result.
+  // the worst-element optimisation and the assembly of the result. Steps that an engine runs
+  // behind a retriangulation's repair (Engine::retriangulate_and_move) count in t_triangulation.
   double t_initial = 0, t_triangulation = 0, t_full_triangulation = 0, t_forces = 0, t_density = 0,
          t_cleanup = 0, t_finish = 0, t_total = 0;
 };

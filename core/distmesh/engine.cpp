@@ -41,4 +41,10 @@ void Engine::move_points_until(const StepRule& rule, int first_iteration, int li
   }
 }
 
+std::optional<TopologyStats> Engine::retriangulate_and_move(const StepRule& /*rule*/,
+                                                            int /*first_iteration*/, int /*limit*/,
+                                                            std::vector<StepResult>& /*steps*/) {
+  return std::nullopt;
+}
+
 }  // namespace meshd

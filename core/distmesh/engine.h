@@ -96,6 +96,13 @@ class Engine {
   // in between.
   virtual void move_points_until(const StepRule& rule, int first_iteration, int limit,
                                  std::vector<StepResult>& steps);
+  // retriangulate(false) followed by move_points_until(rule, first_iteration, limit, steps), where
+  // an engine can start the steps before it learns the repair's outcome (one wait for both):
+  // returns the triangulation's stats, the steps appended. Otherwise (the default) does nothing
+  // and returns nothing, and the caller calls the two.
+  virtual std::optional<TopologyStats> retriangulate_and_move(const StepRule& rule,
+                                                              int first_iteration, int limit,
+                                                              std::vector<StepResult>& steps);
   // How many steps the loop should ask for at once: 1 where a step is long enough that the host
   // round trip is nothing (the default), more where it is not. The loop reports the steps of a
   // batch, and checks for cancellation, only after the batch.

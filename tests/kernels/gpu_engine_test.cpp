@@ -698,6 +698,39 @@ TEST(GpuEngine, SmallTopologyInOneBlockIsTheKernelsOwn) {
   }
 }
 
+// A small job's steps launched behind each retriangulation's repair, before the host reads its
+// outcome (retriangulate_and_move: one wait for both), are the steps launched after it, bit for
+// bit; the same on a uniform disk, a domain with corners and a graded field, and where one flip
+// round a launch leaves most repairs unsettled on the device (the steps then wait for the rest).
+TEST(GpuEngine, StepsBehindASmallRepairAreTheStepsAfterIt) {
+  SKIP_WITHOUT_GPU();
+  int64_t batches_before = 0;  // the last job's with every round a launch allows
+  for (const auto& [id, rounds] :
+       {std::pair{"G1", 0}, std::pair{"G3", 0}, std::pair{"G5", 0}, std::pair{"G5", 1}}) {
+    SCOPED_TRACE(std::string(id) + " rounds " + std::to_string(rounds));
+    const CompiledProblem c = compiled(id, 2000);
+    GpuEngine behind(0), after(0);
+    after.set_steps_behind_repairs(false);
+    for (GpuEngine* e : {&behind, &after})
+      if (rounds > 0) e->set_flip_rounds_per_launch(rounds);
+    const MeshResult a = generate_mesh(c, behind, nullptr, nullptr);
+    const MeshResult b = generate_mesh(c, after, nullptr, nullptr);
+    EXPECT_GT(behind.steps_behind_repair_batches(), 0);
+    EXPECT_EQ(after.steps_behind_repair_batches(), 0);
+    if (rounds > 0) {
+      EXPECT_LT(behind.steps_behind_repair_batches(), batches_before)
+          << "one round a launch should leave repairs to the host";
+    }
+    batches_before = behind.steps_behind_repair_batches();
+    ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
+    EXPECT_TRUE(std::equal(a.mesh.points.begin(), a.mesh.points.end(), b.mesh.points.begin()));
+    EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+    EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+    EXPECT_EQ(a.stats.retriangulations, b.stats.retriangulations);
+    EXPECT_EQ(a.stats.flips, b.stats.flips);
+  }
+}
+
 TEST(GpuEngine, MissingDeviceIsUnavailable) {
   SKIP_WITHOUT_GPU();
   try {
