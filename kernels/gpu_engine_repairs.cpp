@@ -62,6 +62,7 @@ TopologyStats GpuEngine::Impl::end_one_block_repair() {
   const bool built = gpu::settled_on_device(c);
   one_read_retriangulations += built;
   TopologyStats stats;
+  stats.full = false;
   int64_t flips = finish_repair(c, stats.dropped);
   if (built) keep.resize(static_cast<int64_t>(tris.size()));  // the same memory
   if (flips < 0) flips = mend_folds(stats.folds_refilled);
