@@ -710,6 +710,7 @@ TEST(GpuEngine, StepsBehindASmallRepairAreTheStepsAfterIt) {
     SCOPED_TRACE(std::string(id) + " rounds " + std::to_string(rounds));
     const CompiledProblem c = compiled(id, 2000);
     GpuEngine behind(0), after(0);
+    behind.set_steps_behind_repairs(true);
     after.set_steps_behind_repairs(false);
     for (GpuEngine* e : {&behind, &after})
       if (rounds > 0) e->set_flip_rounds_per_launch(rounds);
