@@ -12,6 +12,7 @@
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/distmesh/removal_limit.h"
+#include "core/distmesh/smooth_mean_quality.h"
 #include "core/distmesh/trapped_nodes.h"
 
 namespace meshd {
@@ -125,6 +126,8 @@ class Loop {
       const auto t = Clock::now();
       s.trapped_removed =
           remove_trapped_nodes(copy, static_cast<int32_t>(problem_.fixed_points.size()));
+      s.smoothed_moves = smooth_mean_quality(problem_, copy.points, copy.triangles, copy.boundary,
+                                             engine_.host_pool());
       s.optimized_moves =
           optimize_worst_elements(problem_, copy.points, copy.triangles, copy.boundary,
                                   copy.below ? &*copy.below : nullptr, engine_.host_pool());
@@ -132,8 +135,8 @@ class Loop {
     }
     result.mesh = assemble_mesh(problem_, std::move(copy.points), std::move(copy.triangles),
                                 copy.boundary, copy.tidy);
-    result.quality =
-        engine_.measure_quality(result.mesh, s.optimized_moves > 0 || s.trapped_removed > 0);
+    result.quality = engine_.measure_quality(
+        result.mesh, s.smoothed_moves > 0 || s.optimized_moves > 0 || s.trapped_removed > 0);
     s.t_finish = seconds_since(t_finish);
     s.t_total = seconds_since(t0);
     result.stats = s;

@@ -25,11 +25,13 @@ struct RunStats {
   int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
   int64_t trapped_removed = 0;  // interior nodes of three triangles the finish removed
   int cleanup_iterations = 0;
+  int64_t smoothed_moves = 0;   // node moves of the finish's smoothing (smooth_mean_quality.h)
   int64_t optimized_moves = 0;  // node moves of the worst-element optimisation
   // Seconds per phase; total is the wall time of generate_mesh. t_full_triangulation is the part
   // of t_triangulation spent in triangulations from scratch; t_finish is the last triangulation,
-  // the worst-element optimisation and the assembly of the result. Steps that an engine runs
-  // behind a retriangulation's repair (Engine::retriangulate_and_move) count in t_triangulation.
+  // the smoothing, the worst-element optimisation and the assembly of the result. Steps that an
+  // engine runs behind a retriangulation's repair (Engine::retriangulate_and_move) count in
+  // t_triangulation.
   double t_initial = 0, t_triangulation = 0, t_full_triangulation = 0, t_forces = 0, t_density = 0,
          t_cleanup = 0, t_finish = 0, t_total = 0;
 };
