@@ -4,13 +4,10 @@
 #include <cmath>
 #include <utility>
 
-#include "core/common/colour_groups.h"
 #include "core/common/thread_pool.h"
+#include "core/distmesh/node_moves.h"
 #include "core/distmesh/pattern_search.h"
-#include "core/distmesh/star_table.h"
 #include "core/geometry/projection.cuh"
-#include "core/mesh/boundary.h"
-#include "core/mesh/quality.h"
 
 namespace meshd {
 namespace {
@@ -18,23 +15,12 @@ namespace {
 constexpr int kPasses = 8;
 constexpr int kStepHalvings = 6;
 
-class Optimizer {
+class Optimizer : NodeMoves {
  public:
   Optimizer(const CompiledProblem& problem, std::vector<Vec2>& points,
             const std::vector<std::array<int32_t, 3>>& triangles,
             const std::vector<int32_t>& boundary, ThreadPool* pool)
-      : pool_(pool),
-        fd_(problem.geometry.view()),
-        h0_(problem.h0),
-        deps_(problem.params.deps * problem.h0),
-        nfix_(static_cast<int32_t>(problem.fixed_points.size())),
-        p_(points),
-        t_(triangles),
-        stars_(points.size(), triangles, pool),
-        on_boundary_(points.size(), 0) {
-    for (const auto& e : half_edge_ends(triangles, boundary))
-      on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
-  }
+      : NodeMoves(problem, points, triangles, boundary, pool) {}
 
   int64_t run(const std::vector<int32_t>* below) {
     // good[t]: t's quality was at least the threshold when last measured and none of its nodes
@@ -125,22 +111,9 @@ class Optimizer {
     return nodes;
   }
 
-  // `nodes` (increasing) in groups of which no two share a triangle (colour_groups.h).
-  std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    return meshd::colour_groups(nodes, [&](int32_t v, auto&& visit) {
-      for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t)
-        for (int32_t u : t_[*t]) visit(u);
-    });
-  }
-
   // v moved: the triangles around it must be measured again.
   void mark_star(int32_t v, std::vector<char>& good) const {
     for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) good[*t] = 0;
-  }
-
-  double quality(int32_t t) const {
-    const auto& tri = t_[t];
-    return oriented_radius_ratio(p_[tri[0]], p_[tri[1]], p_[tri[2]]);
   }
 
   // Worst quality in v's star with v at position x.
@@ -217,15 +190,6 @@ class Optimizer {
   static constexpr size_t kNodesPerChunk = 16;
   static constexpr size_t kNodesPerSnapChunk = 256;
   static constexpr size_t kTrianglesPerChunk = 4096;
-  ThreadPool* pool_;
-  ProgramView fd_;
-  double h0_;
-  double deps_;
-  int32_t nfix_;
-  std::vector<Vec2>& p_;
-  const std::vector<std::array<int32_t, 3>>& t_;
-  StarTable stars_;
-  std::vector<char> on_boundary_;
 };
 
 }  // namespace

@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/common/colour_groups.h"
 #include "core/common/thread_pool.h"
+#include "core/distmesh/node_moves.h"
 #include "core/distmesh/optimize_worst.h"
-#include "core/distmesh/star_table.h"
 #include "core/geometry/projection.cuh"
-#include "core/mesh/boundary.h"
-#include "core/mesh/radius_ratio.cuh"
 
 namespace meshd {
 namespace {
@@ -17,23 +14,12 @@ namespace {
 // The first sweep gains most; the third about a tenth of the first (a coastline, G5).
 constexpr int kSweeps = 3;
 
-class Smoother {
+class Smoother : NodeMoves {
  public:
   Smoother(const CompiledProblem& problem, std::vector<Vec2>& points,
            const std::vector<std::array<int32_t, 3>>& triangles,
            const std::vector<int32_t>& boundary, ThreadPool* pool)
-      : pool_(pool),
-        fd_(problem.geometry.view()),
-        h0_(problem.h0),
-        deps_(problem.params.deps * problem.h0),
-        nfix_(static_cast<int32_t>(problem.fixed_points.size())),
-        p_(points),
-        t_(triangles),
-        stars_(points.size(), triangles, pool),
-        on_boundary_(points.size(), 0) {
-    for (const auto& e : half_edge_ends(triangles, boundary))
-      on_boundary_[e[0]] = on_boundary_[e[1]] = 1;
-  }
+      : NodeMoves(problem, points, triangles, boundary, pool) {}
 
   int64_t run() {
     int64_t moves = 0;
@@ -81,18 +67,6 @@ class Smoother {
     return nodes;
   }
 
-  std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const {
-    return meshd::colour_groups(nodes, [&](int32_t v, auto&& visit) {
-      for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t)
-        for (int32_t u : t_[*t]) visit(u);
-    });
-  }
-
-  double quality(int32_t t) const {
-    const auto& tri = t_[t];
-    return oriented_radius_ratio(p_[tri[0]], p_[tri[1]], p_[tri[2]]);
-  }
-
   // The sum of the qualities in v's star, or -1 where one is under kOptimizeBelowQuality.
   double star_sum(int32_t v) const {
     double sum = 0.0;
@@ -137,15 +111,6 @@ class Smoother {
   static constexpr double kOnBoundaryTolerance = 1e-4;
   static constexpr size_t kNodesPerChunk = 64;
   static constexpr size_t kTrianglesPerChunk = 4096;
-  ThreadPool* pool_;
-  ProgramView fd_;
-  double h0_;
-  double deps_;
-  int32_t nfix_;
-  std::vector<Vec2>& p_;
-  const std::vector<std::array<int32_t, 3>>& t_;
-  StarTable stars_;
-  std::vector<char> on_boundary_;
 };
 
 }  // namespace

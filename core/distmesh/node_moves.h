@@ -1,0 +1,42 @@
+// The mesh as the finish's node moves see it (smooth_mean_quality.h, optimize_worst.h): the
+// points they move, the triangles they keep, the stars of the nodes they look at, which nodes lie
+// on the boundary, and the domain's distance that keeps a move inside it or on its boundary.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/distmesh/compiled_problem.h"
+#include "core/distmesh/star_table.h"
+
+namespace meshd {
+
+class ThreadPool;
+
+class NodeMoves {
+ protected:
+  // points: #N by 2, fixed nodes first; triangles: #M by 3, counter-clockwise; boundary:
+  // boundary_half_edges(triangles) (core/mesh/boundary.h).
+  NodeMoves(const CompiledProblem& problem, std::vector<Vec2>& points,
+            const std::vector<std::array<int32_t, 3>>& triangles,
+            const std::vector<int32_t>& boundary, ThreadPool* pool);
+
+  // t's radius ratio, negative where it turned over.
+  double quality(int32_t t) const;
+  // `nodes` (increasing, their stars added) in groups of which no two share a triangle
+  // (colour_groups.h): a group's nodes move at once.
+  std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const;
+
+  ThreadPool* pool_;
+  ProgramView fd_;
+  double h0_;
+  double deps_;
+  int32_t nfix_;
+  std::vector<Vec2>& p_;
+  const std::vector<std::array<int32_t, 3>>& t_;
+  StarTable stars_;
+  std::vector<char> on_boundary_;
+};
+
+}  // namespace meshd
