@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace meshd {
@@ -15,15 +14,16 @@ namespace meshd {
 template <typename StarNodes>
 std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes,
                                                 StarNodes&& star_nodes) {
-  std::unordered_map<int32_t, int32_t> colour;
-  colour.reserve(nodes.size());
+  // Indexed by node (only `nodes` get one), -1 for none yet: an array, not a hash map, because
+  // the finish's smoothing colours most of a million-node mesh.
+  const int32_t last = nodes.empty() ? -1 : *std::max_element(nodes.begin(), nodes.end());
+  std::vector<int32_t> colour(static_cast<size_t>(last + 1), -1);
   std::vector<std::vector<int32_t>> groups;
   std::vector<char> taken;
   for (int32_t v : nodes) {
     taken.assign(groups.size() + 1, 0);
     star_nodes(v, [&](int32_t u) {
-      const auto it = colour.find(u);
-      if (it != colour.end()) taken[it->second] = 1;
+      if (static_cast<size_t>(u) < colour.size() && colour[u] >= 0) taken[colour[u]] = 1;
     });
     const auto c = static_cast<int32_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
     if (c == static_cast<int32_t>(groups.size())) groups.emplace_back();
