@@ -716,9 +716,11 @@ TEST(GpuEngine, StepsBehindASmallRepairAreTheStepsAfterIt) {
       if (rounds > 0) e->set_flip_rounds_per_launch(rounds);
     const MeshResult a = generate_mesh(c, behind, nullptr, nullptr);
     const MeshResult b = generate_mesh(c, after, nullptr, nullptr);
-    EXPECT_GT(behind.steps_behind_repair_batches(), 0);
     EXPECT_EQ(after.steps_behind_repair_batches(), 0);
-    if (rounds > 0) {
+    if (rounds == 0) {
+      EXPECT_GT(behind.steps_behind_repair_batches(), 0);
+    } else {
+      // The one-block repair may settle none of them: the steps then all wait (0 batches).
       EXPECT_LT(behind.steps_behind_repair_batches(), batches_before)
           << "one round a launch should leave repairs to the host";
     }
