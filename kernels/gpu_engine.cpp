@@ -42,10 +42,10 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
   // same kernels launched one by one under it.
   const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");
   set_step_graph(graph == nullptr || std::string(graph) != "0");
-  // Off until its agreement tests have passed on a device (bench/RESULTS.md, 2026-12-07): a small
-  // job's steps wait for its retriangulation's outcome unless the variable is 1.
+  // 0 makes a small job's steps wait for its retriangulation's outcome, as before the change
+  // (for comparisons: the same bits, bench/RESULTS.md).
   const char* behind = std::getenv("MESHD_GPU_STEPS_BEHIND_REPAIRS");
-  set_steps_behind_repairs(behind != nullptr && std::string(behind) == "1");
+  set_steps_behind_repairs(behind == nullptr || std::string(behind) != "0");
 }
 
 GpuEngine::~GpuEngine() {

@@ -84,8 +84,8 @@ class GpuEngine final : public Engine {
   // forms; on by default) or as the kernels one by one and the flip loop.
   void set_one_block_topology(bool on);
   // For tests: whether a small job's steps are launched behind its retriangulation's repair, before
-  // the host reads the repair's outcome (retriangulate_and_move; off by default, on where the
-  // environment sets MESHD_GPU_STEPS_BEHIND_REPAIRS=1), and how many batches ran there. The
+  // the host reads the repair's outcome (retriangulate_and_move; on by default, off where the
+  // environment sets MESHD_GPU_STEPS_BEHIND_REPAIRS=0), and how many batches ran there. The
   // same bits either way.
   void set_steps_behind_repairs(bool on);
   int64_t steps_behind_repair_batches() const;

@@ -82,7 +82,7 @@ struct GpuEngine::Impl {
   int64_t one_read_retriangulations = 0;  // end_one_block_repair's that found the bars built
   // Steps launched behind a small retriangulation's repair (GpuEngine::retriangulate_and_move),
   // and the batches that ran there.
-  bool steps_behind_repairs = false;
+  bool steps_behind_repairs = true;
   int64_t steps_behind_repair_batches = 0;
   int64_t replayed_triangles = kReplayedTriangles;
   // A small triangulation's repair and bars in one block's launch each (kOneBlockRows).
