@@ -1,6 +1,9 @@
 #include "core/distmesh/node_moves.h"
 
+#include <cmath>
+
 #include "core/common/colour_groups.h"
+#include "core/geometry/sdf_eval.cuh"
 #include "core/mesh/boundary.h"
 #include "core/mesh/radius_ratio.cuh"
 
@@ -33,6 +36,10 @@ std::vector<std::vector<int32_t>> NodeMoves::colour_groups(
     for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t)
       for (int32_t u : t_[*t]) visit(u);
   });
+}
+
+bool NodeMoves::lies_on_boundary(Vec2 x) const {
+  return std::fabs(eval_sdf(fd_, x)) <= kOnBoundaryTolerance * h0_;
 }
 
 }  // namespace meshd

@@ -27,6 +27,12 @@ class NodeMoves {
   // `nodes` (increasing, their stars added) in groups of which no two share a triangle
   // (colour_groups.h): a group's nodes move at once.
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const;
+  // Whether x lies on the domain's boundary, within kOnBoundaryTolerance.
+  bool lies_on_boundary(Vec2 x) const;
+
+  // A boundary node this close (times h0) to the domain's boundary is on it: the snap moves
+  // nodes farther off onto it, and a move keeps a boundary node this close.
+  static constexpr double kOnBoundaryTolerance = 1e-4;
 
   ThreadPool* pool_;
   ProgramView fd_;

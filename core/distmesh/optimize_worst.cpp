@@ -63,17 +63,16 @@ class Optimizer : NodeMoves {
     // Where each node would go (the distance and the projection, the costly part) depends on that
     // node alone: found in parallel. Whether it goes depends on its neighbours: decided in order.
     using Target = std::pair<int32_t, Vec2>;
-    const std::vector<Target> targets = gather_chunks<Target>(
-        pool_, p_.size() - nfix_, kNodesPerSnapChunk,
-        [&](size_t begin, size_t end, std::vector<Target>& out) {
-          for (size_t i = begin; i < end; ++i) {
-            const int32_t v = nfix_ + static_cast<int32_t>(i);
-            if (!on_boundary_[v] || std::fabs(eval_sdf(fd_, p_[v])) <= kSnapTolerance * h0_)
-              continue;
-            const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
-            if (std::fabs(eval_sdf(fd_, x)) <= kSnapTolerance * h0_) out.push_back({v, x});
-          }
-        });
+    const std::vector<Target> targets =
+        gather_chunks<Target>(pool_, p_.size() - nfix_, kNodesPerSnapChunk,
+                              [&](size_t begin, size_t end, std::vector<Target>& out) {
+                                for (size_t i = begin; i < end; ++i) {
+                                  const int32_t v = nfix_ + static_cast<int32_t>(i);
+                                  if (!on_boundary_[v] || lies_on_boundary(p_[v])) continue;
+                                  const Vec2 x = project_to_boundary(fd_, p_[v], deps_);
+                                  if (lies_on_boundary(x)) out.push_back({v, x});
+                                }
+                              });
     std::vector<int32_t> nodes;
     for (const auto& [v, x] : targets) nodes.push_back(v);
     stars_.add(nodes);
@@ -182,8 +181,6 @@ class Optimizer : NodeMoves {
     return !(p_[v] == start);
   }
 
-  // Boundary nodes farther than this (times h0) from the boundary are snapped onto it.
-  static constexpr double kSnapTolerance = 1e-4;
   // A snap may lower the worst quality in the node's star to this, or to what it was, not below.
   static constexpr double kSnapMinQuality = 0.1;
   // Nodes per task in a parallel loop: a boundary node's search costs a few hundred distances.

@@ -1,7 +1,6 @@
 #include "core/distmesh/smooth_mean_quality.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/common/thread_pool.h"
 #include "core/distmesh/node_moves.h"
@@ -99,16 +98,11 @@ class Smoother : NodeMoves {
     p_[v] = x;
     const double after = star_sum(v);
     bool keep = after > before;
-    if (keep) {
-      const double d = eval_sdf(fd_, x);
-      keep = on_boundary_[v] ? std::fabs(d) <= kOnBoundaryTolerance * h0_ : d < 0.0;
-    }
+    if (keep) keep = on_boundary_[v] ? lies_on_boundary(x) : eval_sdf(fd_, x) < 0.0;
     if (!keep) p_[v] = start;
     return keep;
   }
 
-  // A boundary node's new place lies this close (times h0) to the boundary, as the snap's does.
-  static constexpr double kOnBoundaryTolerance = 1e-4;
   static constexpr size_t kNodesPerChunk = 64;
   static constexpr size_t kTrianglesPerChunk = 4096;
 };
