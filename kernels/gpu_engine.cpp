@@ -20,6 +20,15 @@
 #include "kernels/scan.h"
 
 namespace meshd {
+namespace {
+
+// Whether an engine switch named by the environment variable is on: on unless it is "0".
+bool on_unless_zero(const char* variable) {
+  const char* value = std::getenv(variable);
+  return value == nullptr || std::string(value) != "0";
+}
+
+}  // namespace
 
 // ---- Engine interface ---------------------------------------------------------------------------
 
@@ -40,12 +49,10 @@ GpuEngine::GpuEngine(int device) : impl_((gpu::checked_device(device), std::make
       cudaMemsetAsync(impl_->last_block_ticket.data(), 0, sizeof(unsigned), impl_->stream));
   // compute-sanitizer's racecheck crashes on graphs with conditional nodes: the variable runs the
   // same kernels launched one by one under it.
-  const char* graph = std::getenv("MESHD_GPU_STEP_GRAPH");
-  set_step_graph(graph == nullptr || std::string(graph) != "0");
-  // 0 makes a small job's steps wait for its retriangulation's outcome, as before the change
-  // (for comparisons: the same bits, bench/RESULTS.md).
-  const char* behind = std::getenv("MESHD_GPU_STEPS_BEHIND_REPAIRS");
-  set_steps_behind_repairs(behind == nullptr || std::string(behind) != "0");
+  set_step_graph(on_unless_zero("MESHD_GPU_STEP_GRAPH"));
+  // 0 makes a small job's steps wait for its retriangulation's outcome (for comparisons: the same
+  // bits, bench/RESULTS.md).
+  set_steps_behind_repairs(on_unless_zero("MESHD_GPU_STEPS_BEHIND_REPAIRS"));
 }
 
 GpuEngine::~GpuEngine() {
