@@ -104,6 +104,9 @@ int64_t GpuEngine::load_points(const CompiledProblem& problem, const std::vector
   s.n = static_cast<int64_t>(points.size());
   s.p.upload(points.data(), points.size(), s.stream);
   s.reset_node_state();
+  // Triangles prepared for other points (a refinement's split ones) no longer fit.
+  s.prepared = false;
+  s.have_triangulation = false;
   return s.n;
 }
 

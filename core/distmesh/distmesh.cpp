@@ -9,6 +9,7 @@
 
 #include "core/common/error.h"
 #include "core/distmesh/assemble_mesh.h"
+#include "core/distmesh/gap_points.h"
 #include "core/distmesh/node_estimate.h"
 #include "core/distmesh/optimize_worst.h"
 #include "core/distmesh/removal_limit.h"
@@ -72,7 +73,7 @@ class Loop {
         // 1-2. Initial points.
         engine_.initialize(*current_);
       } else {
-        engine_.refine(*current_);
+        refine_and_fill_gaps();
       }
       s.t_initial += seconds_since(t);
       triangulate(true);
@@ -157,6 +158,25 @@ class Loop {
     const auto free_nodes =
         engine_.node_count() - static_cast<int64_t>(current_->fixed_points.size());
     return most_removed_at_once(free_nodes);
+  }
+
+  // The next level: the engine's refinement, then nodes where the coarser mesh left part of the
+  // domain without triangles (gap_points.h), appended, so that the engine's refined nodes keep
+  // their numbers. Only a level with gaps goes back through the host's copy of the nodes.
+  void refine_and_fill_gaps() {
+    std::vector<Vec2> coarse_points;
+    std::vector<std::array<int32_t, 3>> coarse_triangles;
+    engine_.read_points(coarse_points);
+    engine_.read_triangles(coarse_triangles);
+    engine_.refine(*current_);
+    std::vector<Vec2> nodes;
+    engine_.read_points(nodes);
+    const std::vector<Vec2> gaps =
+        gap_points(*current_, coarse_points, coarse_triangles, nodes, engine_.host_pool());
+    if (gaps.empty()) return;
+    stats_.gap_nodes += static_cast<int64_t>(gaps.size());
+    nodes.insert(nodes.end(), gaps.begin(), gaps.end());
+    engine_.load_points(*current_, nodes);
   }
 
   void triangulate(bool full) {

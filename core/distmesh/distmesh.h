@@ -23,6 +23,7 @@ struct RunStats {
   int fold_refills = 0;         // repairs that met turned-over triangles and mended them locally
   int64_t density_removed = 0;  // points removed by density control
   int64_t cleanup_removed = 0;  // points removed by the boundary clean-up
+  int64_t gap_nodes = 0;        // nodes added where a coarser level left no mesh (gap_points.h)
   int64_t trapped_removed = 0;  // interior nodes of three triangles the finish removed
   int cleanup_iterations = 0;
   int64_t smoothed_moves = 0;   // node moves of the finish's smoothing (smooth_mean_quality.h)

@@ -1,0 +1,92 @@
+// Nodes where a coarser level's mesh left part of the domain without triangles (gap_points.h).
+#include "core/distmesh/gap_points.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <numbers>
+
+#include "core/common/thread_pool.h"
+#include "core/distmesh/cpu_engine.h"
+#include "core/distmesh/distmesh.h"
+#include "core/distmesh/node_estimate.h"
+#include "core/mesh/validity.h"
+
+namespace meshd {
+namespace {
+
+Shape square_and_disk(Vec2 center, double radius) {
+  return Shape{
+      Csg{CsgOp::kUnion,
+          {Shape{Rectangle{{0, 0}, {10, 10}}, "", ""}, Shape{Circle{center, radius}, "", ""}}},
+      "", ""};
+}
+
+// The square [0, 10]^2 as two triangles.
+const std::vector<Vec2> kSquare = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+const std::vector<std::array<int32_t, 3>> kSquareTriangles = {{0, 1, 2}, {0, 2, 3}};
+
+CompiledProblem level_of(const Shape& geometry, double h0) {
+  Problem p;
+  p.geometry = geometry;
+  p.h0 = h0;
+  return compile_problem(p);
+}
+
+TEST(GapPoints, FillADiskThatTheCoarseMeshMissed) {
+  const Vec2 center{13, 5};
+  const CompiledProblem level = level_of(square_and_disk(center, 1.0), 0.25);
+  const std::vector<Vec2> gaps = gap_points(level, kSquare, kSquareTriangles, kSquare);
+  // The disk's area over a grid point's, pi / (0.25^2 sqrt(3) / 2): about 58.
+  EXPECT_GT(gaps.size(), 45u);
+  EXPECT_LT(gaps.size(), 70u);
+  for (const Vec2& q : gaps) EXPECT_LT(norm(q - center), 1.0) << q.x << ", " << q.y;
+}
+
+TEST(GapPoints, NoneWhereTheCoarseMeshCoversTheDomain) {
+  const CompiledProblem level = level_of(Shape{Rectangle{{0, 0}, {10, 10}}, "", ""}, 0.25);
+  EXPECT_TRUE(gap_points(level, kSquare, kSquareTriangles, kSquare).empty());
+}
+
+TEST(GapPoints, KeepHalfAnEdgeFromTheNodesThere) {
+  const Vec2 center{13, 5};
+  const CompiledProblem level = level_of(square_and_disk(center, 1.0), 0.25);
+  std::vector<Vec2> nodes = kSquare;
+  nodes.push_back(center);
+  const std::vector<Vec2> gaps = gap_points(level, kSquare, kSquareTriangles, nodes);
+  EXPECT_FALSE(gaps.empty());
+  for (const Vec2& q : gaps) EXPECT_GE(norm(q - center), 0.125) << q.x << ", " << q.y;
+}
+
+// Through the multilevel loop: a disk narrower than the coarsest level's edge, beside a square
+// meshed in three levels, gets no triangle at the coarse levels; the finest level fills it.
+TEST(GapPoints, AMultilevelRunMeshesADiskUnderItsCoarsestResolution) {
+  const Vec2 center{10.5, 5};
+  const double radius = 0.08;
+  Problem p;
+  p.geometry = square_and_disk(center, radius);
+  p.h0 = 1.0;
+  p.h0 = h0_for_node_count(p, 40000);
+  p.params.multilevel = Params::Multilevel::kOn;
+  const CompiledProblem c = compile_problem(p);
+  ThreadPool pool;
+  CpuEngine engine(pool);
+  const MeshResult r = generate_mesh(c, engine, nullptr, nullptr);
+  std::printf("[ measured ] %d levels, h0 %.4f, %zu nodes, %lld gap nodes\n", r.stats.levels, c.h0,
+              r.mesh.points.size(), static_cast<long long>(r.stats.gap_nodes));
+  ASSERT_GE(r.stats.levels, 3);
+  ASSERT_GT(c.h0 * 4, 2 * radius);  // the coarsest edge spans the disk
+  EXPECT_GT(r.stats.gap_nodes, 0);
+  EXPECT_TRUE(check_validity(r.mesh).valid());
+  // The disk lies apart from the square: the triangles beyond x = 10 cover it.
+  double covered = 0;
+  for (const auto& t : r.mesh.triangles) {
+    const Vec2 a = r.mesh.points[t[0]], b = r.mesh.points[t[1]], d = r.mesh.points[t[2]];
+    if ((a.x + b.x + d.x) / 3 <= 10) continue;
+    covered += 0.5 * ((b.x - a.x) * (d.y - a.y) - (b.y - a.y) * (d.x - a.x));
+  }
+  EXPECT_GT(covered, 0.8 * std::numbers::pi * radius * radius);
+}
+
+}  // namespace
+}  // namespace meshd
