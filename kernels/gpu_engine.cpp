@@ -106,7 +106,6 @@ int64_t GpuEngine::load_points(const CompiledProblem& problem, const std::vector
   s.reset_node_state();
   // Triangles prepared for other points (a refinement's split ones) no longer fit.
   s.prepared = false;
-  s.have_triangulation = false;
   return s.n;
 }
 

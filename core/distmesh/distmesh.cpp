@@ -164,7 +164,8 @@ class Loop {
 
   // The next level: the engine's refinement, then nodes where the coarser mesh left part of the
   // domain without triangles (gap_points.h), appended, so that the engine's refined nodes keep
-  // their numbers. Only a level with gaps goes back through the host's copy of the nodes.
+  // their numbers. The coarse mesh and the refined nodes are read to the host at every level;
+  // only a level with gaps loads its nodes again.
   void refine_and_fill_gaps() {
     std::vector<Vec2> coarse_points;
     std::vector<std::array<int32_t, 3>> coarse_triangles;
