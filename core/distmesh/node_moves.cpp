@@ -16,6 +16,7 @@ NodeMoves::NodeMoves(const CompiledProblem& problem, std::vector<Vec2>& points,
       fd_(problem.geometry.view()),
       h0_(problem.h0),
       deps_(problem.params.deps * problem.h0),
+      geps_(problem.params.geps * problem.h0),
       nfix_(static_cast<int32_t>(problem.fixed_points.size())),
       p_(points),
       t_(triangles),
@@ -40,6 +41,17 @@ std::vector<std::vector<int32_t>> NodeMoves::colour_groups(
 
 bool NodeMoves::lies_on_boundary(Vec2 x) const {
   return std::fabs(eval_sdf(fd_, x)) <= kOnBoundaryTolerance * h0_;
+}
+
+bool NodeMoves::star_stays_inside(int32_t v, Vec2 x, double d_at_x) const {
+  for (const int32_t* t = stars_.begin(v); t != stars_.end(v); ++t) {
+    Vec2 sum{0.0, 0.0};
+    for (int32_t u : t_[*t]) sum = sum + (u == v ? x : p_[u]);
+    const Vec2 centroid = (1.0 / 3.0) * sum;
+    if (d_at_x + norm(centroid - x) < -geps_) continue;
+    if (!(eval_sdf(fd_, centroid) < -geps_)) return false;
+  }
+  return true;
 }
 
 }  // namespace meshd

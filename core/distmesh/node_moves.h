@@ -1,6 +1,7 @@
 // The mesh as the finish's node moves see it (smooth_mean_quality.h, optimize_worst.h): the
 // points they move, the triangles they keep, the stars of the nodes they look at, which nodes lie
-// on the boundary, and the domain's distance that keeps a move inside it or on its boundary.
+// on the boundary, and the domain's distance that keeps a move, and the triangles around it, inside
+// the domain or on its boundary.
 #pragma once
 
 #include <array>
@@ -29,6 +30,13 @@ class NodeMoves {
   std::vector<std::vector<int32_t>> colour_groups(const std::vector<int32_t>& nodes) const;
   // Whether x lies on the domain's boundary, within kOnBoundaryTolerance.
   bool lies_on_boundary(Vec2 x) const;
+  // Whether, with v at x (where the distance is d_at_x), every triangle of v's star keeps its
+  // centroid inside by more than geps: the centroid filter's rule (centroid_rule.cuh), which held
+  // when the mesh came in. Triangles cross a spit of land where it is narrower than an edge, with
+  // their centroids in the water; a node moved a little, or carried along the boundary round the
+  // spit's tip, can put one on it. Far inside, the distance's bound at x decides without the
+  // centroids' (the distance grows by at most the way from x to a centroid).
+  bool star_stays_inside(int32_t v, Vec2 x, double d_at_x) const;
 
   // A boundary node this close (times h0) to the domain's boundary is on it: the snap moves
   // nodes farther off onto it, and a move keeps a boundary node this close.
@@ -38,6 +46,7 @@ class NodeMoves {
   ProgramView fd_;
   double h0_;
   double deps_;
+  double geps_;
   int32_t nfix_;
   std::vector<Vec2>& p_;
   const std::vector<std::array<int32_t, 3>>& t_;

@@ -82,6 +82,7 @@ class Optimizer : NodeMoves {
       // flattens that triangle, to a round-off area of either sign that no later move undoes.
       const double before = star_quality(v, p_[v]), after = star_quality(v, x);
       if (after <= 0.0 || after < std::min(before, kSnapMinQuality)) continue;
+      if (!star_stays_inside(v, x, 0.0)) continue;
       p_[v] = x;
       mark_star(v, good);
       ++moves;
@@ -164,12 +165,13 @@ class Optimizer : NodeMoves {
         Vec2 best_x = p_[v];
         for (int k = 0; k < n_dirs; ++k) {
           Vec2 x = p_[v] + step * dirs[k];
+          const double d = boundary ? 0.0 : eval_sdf(fd_, x);
           if (boundary)
             x = project_to_boundary(fd_, x, deps_);
-          else if (eval_sdf(fd_, x) >= 0.0)
+          else if (d >= 0.0)
             continue;
           const double q = star_quality(v, x);
-          if (q > best) {
+          if (q > best && star_stays_inside(v, x, d)) {
             best = q;
             best_x = x;
             improved = true;

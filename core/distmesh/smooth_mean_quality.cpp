@@ -98,7 +98,10 @@ class Smoother : NodeMoves {
     p_[v] = x;
     const double after = star_sum(v);
     bool keep = after > before;
-    if (keep) keep = on_boundary_[v] ? lies_on_boundary(x) : eval_sdf(fd_, x) < 0.0;
+    if (keep) {
+      const double d = on_boundary_[v] ? 0.0 : eval_sdf(fd_, x);
+      keep = (on_boundary_[v] ? lies_on_boundary(x) : d < 0.0) && star_stays_inside(v, x, d);
+    }
     if (!keep) p_[v] = start;
     return keep;
   }
