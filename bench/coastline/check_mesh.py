@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """Checks a coastal mesh (MSH 2.2 ASCII, as `meshctl -o x.msh22` writes it) against its region.
 
-    check_mesh.py MESH.msh22 REGION.islands MIN_ISLAND_AREA_M2 [--area M2]
+    check_mesh.py MESH.msh22 REGION.islands MIN_ISLAND_AREA_M2 [--area M2] [--request R.textproto]
 
 prints one line of `key=value` pairs: nodes, triangles, q_min, q_mean (radius ratio
 q = (b+c-a)(c+a-b)(a+b-c)/(abc), the formula of core/mesh/quality.h), valid, the boundary loops
 (the outer ones and the holes) and islands=kept/total for the islands of REGION.islands (from
-make_region.py) of at least MIN_ISLAND_AREA_M2; with --area, the mesh's area against it.
-Exits 1 when the mesh is invalid or an island of that size is lost.
+make_region.py) of at least MIN_ISLAND_AREA_M2; with --area, the mesh's area against it; with
+--request (the region's request, as export_ocean.py writes it), on_land: the triangles whose
+centroid lies on land, off the water the request's polygons bound (DistMesh keeps a triangle where
+its centroid lies inside). Exits 1 when the mesh is invalid, an island of that size is lost or a
+triangle lies on land.
 
 Valid means what core/mesh/validity.h means: finite points, every triangle counter-clockwise
 with positive area, every edge used once (boundary) or twice in opposite directions, every point
@@ -18,6 +21,8 @@ import argparse
 import sys
 
 import numpy as np
+
+from request_polygons import on_land, polygons
 
 
 def read_msh22(path):
@@ -133,6 +138,7 @@ def main():
     ap.add_argument("islands")
     ap.add_argument("min_island_area", type=float)
     ap.add_argument("--area", type=float, help="the domain's area, to compare the mesh's with")
+    ap.add_argument("--request", help="the region's request, to find triangles on land")
     ap.add_argument("--orient", action="store_true",
                     help="turn clockwise triangles first (Gmsh orients each surface's triangles "
                          "as its boundary loops run; meshd's are all counter-clockwise)")
@@ -155,12 +161,18 @@ def main():
               f"islands_any_size={len(isl)}"]
     if a.area:
         fields.append(f"area_rel_err={(area - a.area) / a.area:+.4f}")
+    land = np.zeros(len(t), dtype=bool)
+    if a.request:
+        land = on_land(polygons(a.request), p[t].mean(axis=1))
+        fields.append(f"on_land={int(land.sum())}")
     print(" ".join(fields))
     for line in problems:
         print(f"check_mesh: invalid: {line}", file=sys.stderr)
     for x, y, s in big[lost]:
         print(f"check_mesh: island lost: ({x:.0f}, {y:.0f}), {s:.0f} m2", file=sys.stderr)
-    return 1 if problems or lost.any() else 0
+    for x, y in p[t[land]].mean(axis=1):
+        print(f"check_mesh: triangle on land: centroid ({x:.1f}, {y:.1f})", file=sys.stderr)
+    return 1 if problems or lost.any() or land.any() else 0
 
 
 if __name__ == "__main__":

@@ -14,12 +14,12 @@ and the bound of the sharpest; with MESH, how many of its triangles under q 0.6 
 corner, another polygon vertex, or none. Needs only numpy.
 """
 import math
-import re
 import sys
 
 import numpy as np
 
 from check_mesh import quality, read_msh22
+from request_polygons import polygons
 
 THRESHOLDS = (10.0, 15.0, 20.8, 30.0)
 POOR = 0.6
@@ -29,25 +29,6 @@ def best_quality(angle):
     """The best q of a triangle with an angle of `angle` degrees: the isosceles one."""
     a = math.radians(angle)
     return 8 * math.sin(a / 2) * math.sin((math.pi - a) / 4) ** 2
-
-
-def polygons(path):
-    """[(vertices, water_inside)] of every polygon in a request written as text."""
-    text = "\n".join(l for l in open(path) if not l.lstrip().startswith("#"))
-    stack, found, ring, x = [], [], None, 0.0
-    for tok in re.findall(r"[A-Za-z_]+\s*\{|\}|[xy]:\s*[-+\d.eE]+", text):
-        if tok.endswith("{"):
-            stack.append(tok[:-1].strip())
-            if stack[-1] == "polygon":
-                ring = ([], len(stack) > 1 and stack[-2] == "subtract")
-        elif tok == "}":
-            if stack.pop() == "polygon":
-                found.append(ring)
-        elif tok[0] == "x":
-            x = float(tok[2:])
-        elif ring is not None and stack and stack[-1] == "vertices":
-            ring[0].append((x, float(tok[2:])))
-    return found
 
 
 def water_corners(rings):

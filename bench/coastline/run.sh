@@ -17,7 +17,7 @@
 # Steps: 1. make what is missing; 2. start meshd --backend B on a free port; 3. mesh R times with
 # meshctl (time = meshd's own "mesh" seconds: the engine, without transfer and file writing;
 # median of R); 4. check the last mesh (check_mesh.py: valid, q_min, q_mean, islands of at least
-# MIN_ISLAND m2 kept); 5. Gmsh (Frontal-Delaunay, the default, and Delaunay) on PREFIX.geo with
+# MIN_ISLAND m2 kept, triangles on land); 5. Gmsh (Frontal-Delaunay, the default, and Delaunay) on PREFIX.geo with
 # its size field scaled until its node count is within 2% of meshd's, timed R times (process wall
 # time, median), checked the same way; 6. the table.
 #
@@ -85,7 +85,8 @@ server=(--server "127.0.0.1:$port" --deadline 7200)
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 check() {  # check MSH22 [--orient]: check_mesh.py's key=value line, or "checked=no" without numpy
   if "$PYTHON" -c "import numpy" 2>/dev/null; then
-    "$PYTHON" "$here/check_mesh.py" "$@" "$prefix.islands" "$MIN_ISLAND" || true
+    "$PYTHON" "$here/check_mesh.py" "$@" --request "$prefix.textproto" "$prefix.islands" \
+      "$MIN_ISLAND" || true
   else
     echo "checked=no"
   fi
@@ -109,9 +110,10 @@ log "meshd: $meshd_check"
 nodes=$(field nodes "$meshd_check")
 [[ -n $nodes ]] || nodes=$(sed -n 's/.*nodes \([0-9]*\) .*/\1/p' <<<"$out")
 
-rows=("$(printf '| meshd %s (%s) | %s | %s | %s | %s | %s | %s |' "$backend" "$device" "$nodes" \
-  "$(field triangles "$meshd_check")" "$meshd_t" "$(field q_min "$meshd_check")" \
-  "$(field q_mean "$meshd_check")" "$(field islands "$meshd_check")")")
+rows=("$(printf '| meshd %s (%s) | %s | %s | %s | %s | %s | %s | %s |' "$backend" "$device" \
+  "$nodes" "$(field triangles "$meshd_check")" "$meshd_t" "$(field q_min "$meshd_check")" \
+  "$(field q_mean "$meshd_check")" "$(field islands "$meshd_check")" \
+  "$(field on_land "$meshd_check")")")
 
 # ---- 5. Gmsh -----------------------------------------------------------------------------------
 
@@ -148,15 +150,15 @@ if [[ $gmsh == 1 ]]; then
       gtimes+=("$t")
     done
     if [[ ${#gtimes[@]} -lt $repeat ]]; then
-      rows+=("| Gmsh $("$GMSH" --version 2>&1) $name | failed (see the log) | | | | | |")
+      rows+=("| Gmsh $("$GMSH" --version 2>&1) $name | failed (see the log) | | | | | | |")
       continue
     fi
     g=$(check "$tmp/gmsh.msh22" --orient)
     log "gmsh $name: $g"
-    rows+=("$(printf '| Gmsh %s %s | %s | %s | %.3f | %s | %s | %s |' "$("$GMSH" --version 2>&1)" \
-      "$name" "$(field nodes "$g")" "$(field triangles "$g")" \
+    rows+=("$(printf '| Gmsh %s %s | %s | %s | %.3f | %s | %s | %s | %s |' \
+      "$("$GMSH" --version 2>&1)" "$name" "$(field nodes "$g")" "$(field triangles "$g")" \
       "$(printf '%s\n' "${gtimes[@]}" | median)" "$(field q_min "$g")" "$(field q_mean "$g")" \
-      "$(field islands "$g")")")
+      "$(field islands "$g")" "$(field on_land "$g")")")
   done
 fi
 
@@ -167,6 +169,6 @@ echo "Region $prefix: h0 $H0 m, simplify $SIMPLIFY h0, open $OPEN h0, grade $GRA
   "islands counted from $MIN_ISLAND m2; $(nproc) CPUs, load at end $(cut -d' ' -f1-3 /proc/loadavg);" \
   "time: meshd's mesh seconds / Gmsh's process wall time, median of $repeat."
 echo
-echo "| mesher | nodes | triangles | time s | q_min | q_mean | islands kept |"
-echo "|---|---|---|---|---|---|---|"
+echo "| mesher | nodes | triangles | time s | q_min | q_mean | islands kept | triangles on land |"
+echo "|---|---|---|---|---|---|---|---|"
 printf '%s\n' "${rows[@]}"

@@ -2,7 +2,8 @@
 # A small real coast end to end (bench/coastline/): GSHHG's high-resolution shoreline of a patch
 # of the Norwegian coast west of Bergen (786 shoreline vertices, 63 islands), the sea round it
 # graded toward the shore, meshed by meshd through meshctl. Asserts properties only: the mesh is
-# valid and every island of at least (2 h0)^2 is a hole in it (check_mesh.py exits 1 otherwise).
+# valid, every island of at least (2 h0)^2 is a hole in it and no triangle lies on land
+# (check_mesh.py exits 1 otherwise).
 # q_min and q_mean are printed, not asserted (bench/RESULTS.md follows them, coastline section).
 # Skips (77) where gmt, its gmt-gshhg-high data or python3-gdal is missing.
 #
@@ -32,9 +33,10 @@ start_local_meshd "$meshd" "$meshctl" "$work/meshd.log" --backend cpu
   -o "$work/sea.msh22"
 # The islands file lists all 63; check_mesh.py judges those of at least (2 h0)^2.
 result=$("$python" "$src/bench/coastline/check_mesh.py" "$work/sea.msh22" "$work/region.islands" \
-  250000)
+  250000 --request "$work/region.textproto")
 echo "$result"
 grep -q "valid=yes" <<<"$result"
+grep -q "on_land=0" <<<"$result"
 # Islands must be there to be kept: a region that lost its islands would pass vacuously.
 kept=$(sed -n 's/.*islands=\([0-9]*\)\/\([0-9]*\).*/\1 \2/p' <<<"$result")
 read -r k n <<<"$kept"
