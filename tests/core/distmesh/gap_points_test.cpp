@@ -58,6 +58,37 @@ TEST(GapPoints, KeepHalfAnEdgeFromTheNodesThere) {
   for (const Vec2& q : gaps) EXPECT_GE(norm(q - center), 0.125) << q.x << ", " << q.y;
 }
 
+// The square [0, 10]^2 as 2 n^2 triangles, so that the grid's rows fall in many bands.
+void square_grid_mesh(int n, std::vector<Vec2>& points, std::vector<std::array<int32_t, 3>>& tris) {
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) points.push_back({10.0 * i / n, 10.0 * j / n});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      tris.push_back({a, b, d});
+      tris.push_back({a, d, c});
+    }
+}
+
+TEST(GapPoints, TheSameGapsOnAnyNumberOfThreads) {
+  std::vector<Vec2> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  square_grid_mesh(40, points, triangles);
+  triangles.erase(triangles.begin() + 1000, triangles.begin() + 1100);  // a gap inside too
+  const CompiledProblem level = level_of(square_and_disk({13, 5}, 1.5), 0.05);
+  const std::vector<Vec2> alone = gap_points(level, points, triangles, points);
+  ASSERT_GT(alone.size(), 1000u);
+  for (unsigned threads : {2u, 5u}) {
+    ThreadPool pool(threads);
+    const std::vector<Vec2> pooled = gap_points(level, points, triangles, points, &pool);
+    ASSERT_EQ(pooled.size(), alone.size()) << threads << " threads";
+    for (size_t k = 0; k < alone.size(); ++k) {
+      ASSERT_EQ(pooled[k].x, alone[k].x) << k;
+      ASSERT_EQ(pooled[k].y, alone[k].y) << k;
+    }
+  }
+}
+
 // Through the multilevel loop: a disk narrower than the coarsest level's edge, beside a square
 // meshed in three levels, gets no triangle at the coarse levels; the finest level fills it.
 TEST(GapPoints, AMultilevelRunMeshesADiskUnderItsCoarsestResolution) {
