@@ -30,7 +30,7 @@ def polygons(path):
     return found
 
 
-def on_land(rings, points, row_height=200.0, chunk=4096):
+def on_land(rings, points, row_height=200.0, chunk=1024):
     """Whether each of `points` (#K by 2) lies inside an odd number of `rings`: a ray to +x
     crosses their edges an odd number of times. Edges and points are bucketed into rows of
     `row_height`, so that each point meets only the edges of its row."""
@@ -47,8 +47,7 @@ def on_land(rings, points, row_height=200.0, chunk=4096):
     order = np.argsort(first)
     first, last, a, b = first[order], last[order], a[order], b[order]
     for r in np.unique(row):
-        edges = np.flatnonzero((first[:np.searchsorted(first, r, side="right")] <= r) &
-                               (last[:np.searchsorted(first, r, side="right")] >= r))
+        edges = np.flatnonzero(last[:np.searchsorted(first, r, side="right")] >= r)
         ea, eb = a[edges], b[edges]
         here = np.flatnonzero(row == r)
         for s in range(0, len(here), chunk):
