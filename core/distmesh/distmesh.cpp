@@ -164,18 +164,21 @@ class Loop {
 
   // The next level: the engine's refinement, then nodes where the coarser mesh left part of the
   // domain without triangles (gap_points.h), appended, so that the engine's refined nodes keep
-  // their numbers. The coarse mesh and the refined nodes are read to the host at every level;
-  // only a level with gaps loads its nodes again.
+  // their numbers. Every refinement reads the coarse mesh to the host; the grid is searched while
+  // an engine that refines on a device may still be at it, and only where the search finds
+  // uncovered points are the refined nodes read and, where some are needed, loaded again.
   void refine_and_fill_gaps() {
     std::vector<Vec2> coarse_points;
     std::vector<std::array<int32_t, 3>> coarse_triangles;
     engine_.read_points(coarse_points);
     engine_.read_triangles(coarse_triangles);
     engine_.refine(*current_);
+    const std::vector<Vec2> uncovered =
+        uncovered_grid_points(*current_, coarse_points, coarse_triangles, engine_.host_pool());
+    if (uncovered.empty()) return;
     std::vector<Vec2> nodes;
     engine_.read_points(nodes);
-    const std::vector<Vec2> gaps =
-        gap_points(*current_, coarse_points, coarse_triangles, nodes, engine_.host_pool());
+    const std::vector<Vec2> gaps = away_from_nodes(*current_, uncovered, nodes);
     if (gaps.empty()) return;
     stats_.gap_nodes += static_cast<int64_t>(gaps.size());
     nodes.insert(nodes.end(), gaps.begin(), gaps.end());

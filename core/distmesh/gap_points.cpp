@@ -142,36 +142,57 @@ class NodeBuckets {
 
 }  // namespace
 
-std::vector<Vec2> gap_points(const CompiledProblem& level, const std::vector<Vec2>& coarse_points,
-                             const std::vector<std::array<int32_t, 3>>& coarse_triangles,
-                             const std::vector<Vec2>& nodes, ThreadPool* pool) {
+std::vector<Vec2> uncovered_grid_points(const CompiledProblem& level,
+                                        const std::vector<Vec2>& coarse_points,
+                                        const std::vector<std::array<int32_t, 3>>& coarse_triangles,
+                                        ThreadPool* pool) {
   const InitialGrid grid = make_initial_grid(level.bbox, level.h0);
   const std::vector<char> covered =
       covered_grid_points(grid, coarse_points, coarse_triangles, pool);
   const ProgramView fd = level.geometry.view();
   const SizeView fh = level.size.view();
   const double geps = level.params.geps * level.h0;
-  // The sizes' floor is 1: compile_problem folds the field's lower bound into h0. Two edges a
-  // bucket keep the buckets few where the level is fine and the scans short where it is coarse.
+  // The sizes' floor is 1: compile_problem folds the field's lower bound into h0.
   constexpr double kSizeFloor = 1.0;
-  const NodeBuckets buckets(nodes, level.bbox, 2 * level.h0);
   // The distance and the size run only at the grid points no triangle covers: the parts outside
-  // the domain, and the gaps.
+  // the domain, and the gaps. Outside, at distance d, the next d / (L dx) points of the row lie
+  // outside too (the distance changes by at most L per unit): skipped, so that a hole or the
+  // land of a coastline costs a few evaluations a row.
+  const double skip_per_outside = 1.0 / (level.lipschitz * grid.dx);
   constexpr size_t kChunk = 1 << 16;
-  return gather_chunks<Vec2>(pool, static_cast<size_t>(grid.nx * grid.ny), kChunk,
-                             [&](size_t begin, size_t end, std::vector<Vec2>& out) {
-                               for (size_t k = begin; k < end; ++k) {
-                                 if (covered[k]) continue;
-                                 const auto index = static_cast<int64_t>(k);
-                                 const Vec2 q = initial_grid_point(grid, index);
-                                 if (!(eval_sdf(fd, q) < -geps)) continue;
-                                 const double h = eval_size(fh, q);
-                                 if (!keep_by_size(level.seed, grid, index, h, kSizeFloor))
-                                   continue;
-                                 if (buckets.any_within(q, 0.5 * level.h0 * h)) continue;
-                                 out.push_back(q);
-                               }
-                             });
+  return gather_chunks<Vec2>(
+      pool, static_cast<size_t>(grid.nx * grid.ny), kChunk,
+      [&](size_t begin, size_t end, std::vector<Vec2>& out) {
+        for (size_t k = begin; k < end; ++k) {
+          if (covered[k]) continue;
+          const auto index = static_cast<int64_t>(k);
+          const Vec2 q = initial_grid_point(grid, index);
+          const double d = eval_sdf(fd, q);
+          if (!(d < -geps)) {
+            const double skip = d * skip_per_outside;
+            if (skip >= 1.0) {
+              const auto row_last = static_cast<size_t>((index / grid.nx + 1) * grid.nx - 1);
+              k = std::min({k + static_cast<size_t>(std::min(skip, 1e15)), row_last, end - 1});
+            }
+            continue;
+          }
+          if (!keep_by_size(level.seed, grid, index, eval_size(fh, q), kSizeFloor)) continue;
+          out.push_back(q);
+        }
+      });
+}
+
+std::vector<Vec2> away_from_nodes(const CompiledProblem& level, const std::vector<Vec2>& points,
+                                  const std::vector<Vec2>& nodes) {
+  if (points.empty()) return {};
+  // Two edges a bucket keep the buckets few where the level is fine and the scans short where
+  // it is coarse.
+  const NodeBuckets buckets(nodes, level.bbox, 2 * level.h0);
+  const SizeView fh = level.size.view();
+  std::vector<Vec2> away;
+  for (const Vec2& q : points)
+    if (!buckets.any_within(q, 0.5 * level.h0 * eval_size(fh, q))) away.push_back(q);
+  return away;
 }
 
 }  // namespace meshd

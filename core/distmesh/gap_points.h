@@ -15,13 +15,19 @@
 
 namespace meshd {
 
-// The points that `level`'s initial grid (initial_points.cuh) would keep in the domain, outside
-// every triangle of the coarse mesh (`coarse_points`, `coarse_triangles`) and farther than half
-// the level's edge, h0 h / 2, from every node of `nodes` (the refined level's). Empty where the
-// coarse mesh covers the domain, which it does unless some part lies under its resolution. The
-// grid points are tested over `pool`'s threads when one is given, with the same result.
-std::vector<Vec2> gap_points(const CompiledProblem& level, const std::vector<Vec2>& coarse_points,
-                             const std::vector<std::array<int32_t, 3>>& coarse_triangles,
-                             const std::vector<Vec2>& nodes, ThreadPool* pool = nullptr);
+// The points that `level`'s initial grid (initial_points.cuh) would keep in the domain and that
+// lie outside every triangle of the coarse mesh (`coarse_points`, `coarse_triangles`): where the
+// coarse mesh missed part of the domain. Empty where it covers the domain, which it does unless
+// some part lies under its resolution. Tested over `pool`'s threads when one is given, with the
+// same result.
+std::vector<Vec2> uncovered_grid_points(const CompiledProblem& level,
+                                        const std::vector<Vec2>& coarse_points,
+                                        const std::vector<std::array<int32_t, 3>>& coarse_triangles,
+                                        ThreadPool* pool = nullptr);
+
+// Those of `points` farther than half the level's edge, h0 h / 2, from every node of `nodes`
+// (the refined level's, which hold the coarse mesh's edges' midpoints): the nodes a gap needs.
+std::vector<Vec2> away_from_nodes(const CompiledProblem& level, const std::vector<Vec2>& points,
+                                  const std::vector<Vec2>& nodes);
 
 }  // namespace meshd

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 
@@ -36,7 +37,8 @@ CompiledProblem level_of(const Shape& geometry, double h0) {
 TEST(GapPoints, FillADiskThatTheCoarseMeshMissed) {
   const Vec2 center{13, 5};
   const CompiledProblem level = level_of(square_and_disk(center, 1.0), 0.25);
-  const std::vector<Vec2> gaps = gap_points(level, kSquare, kSquareTriangles, kSquare);
+  const std::vector<Vec2> gaps =
+      away_from_nodes(level, uncovered_grid_points(level, kSquare, kSquareTriangles), kSquare);
   // The disk's area over a grid point's, pi / (0.25^2 sqrt(3) / 2): about 58.
   EXPECT_GT(gaps.size(), 45u);
   EXPECT_LT(gaps.size(), 70u);
@@ -45,7 +47,7 @@ TEST(GapPoints, FillADiskThatTheCoarseMeshMissed) {
 
 TEST(GapPoints, NoneWhereTheCoarseMeshCoversTheDomain) {
   const CompiledProblem level = level_of(Shape{Rectangle{{0, 0}, {10, 10}}, "", ""}, 0.25);
-  EXPECT_TRUE(gap_points(level, kSquare, kSquareTriangles, kSquare).empty());
+  EXPECT_TRUE(uncovered_grid_points(level, kSquare, kSquareTriangles).empty());
 }
 
 TEST(GapPoints, KeepHalfAnEdgeFromTheNodesThere) {
@@ -53,7 +55,8 @@ TEST(GapPoints, KeepHalfAnEdgeFromTheNodesThere) {
   const CompiledProblem level = level_of(square_and_disk(center, 1.0), 0.25);
   std::vector<Vec2> nodes = kSquare;
   nodes.push_back(center);
-  const std::vector<Vec2> gaps = gap_points(level, kSquare, kSquareTriangles, nodes);
+  const std::vector<Vec2> gaps =
+      away_from_nodes(level, uncovered_grid_points(level, kSquare, kSquareTriangles), nodes);
   EXPECT_FALSE(gaps.empty());
   for (const Vec2& q : gaps) EXPECT_GE(norm(q - center), 0.125) << q.x << ", " << q.y;
 }
@@ -76,16 +79,35 @@ TEST(GapPoints, TheSameGapsOnAnyNumberOfThreads) {
   square_grid_mesh(40, points, triangles);
   triangles.erase(triangles.begin() + 1000, triangles.begin() + 1100);  // a gap inside too
   const CompiledProblem level = level_of(square_and_disk({13, 5}, 1.5), 0.05);
-  const std::vector<Vec2> alone = gap_points(level, points, triangles, points);
+  const std::vector<Vec2> alone = uncovered_grid_points(level, points, triangles);
   ASSERT_GT(alone.size(), 1000u);
   for (unsigned threads : {2u, 5u}) {
     ThreadPool pool(threads);
-    const std::vector<Vec2> pooled = gap_points(level, points, triangles, points, &pool);
+    const std::vector<Vec2> pooled = uncovered_grid_points(level, points, triangles, &pool);
     ASSERT_EQ(pooled.size(), alone.size()) << threads << " threads";
     for (size_t k = 0; k < alone.size(); ++k) {
       ASSERT_EQ(pooled[k].x, alone[k].x) << k;
       ASSERT_EQ(pooled[k].y, alone[k].y) << k;
     }
+  }
+}
+
+// Outside the domain the search skips the points of a row that the distance's bound puts outside
+// too; a distance of unknown bound (an infinite Lipschitz constant) skips none: the same points.
+TEST(GapPoints, SkippingTheOutsideChangesNothing) {
+  std::vector<Vec2> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  square_grid_mesh(40, points, triangles);
+  triangles.erase(triangles.begin() + 1000, triangles.begin() + 1100);
+  const CompiledProblem level = level_of(square_and_disk({13, 5}, 1.5), 0.05);
+  CompiledProblem unbounded = level;
+  unbounded.lipschitz = INFINITY;
+  const std::vector<Vec2> skipping = uncovered_grid_points(level, points, triangles);
+  const std::vector<Vec2> every = uncovered_grid_points(unbounded, points, triangles);
+  ASSERT_EQ(skipping.size(), every.size());
+  for (size_t k = 0; k < every.size(); ++k) {
+    ASSERT_EQ(skipping[k].x, every[k].x) << k;
+    ASSERT_EQ(skipping[k].y, every[k].y) << k;
   }
 }
 
