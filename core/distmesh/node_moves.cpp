@@ -17,6 +17,7 @@ NodeMoves::NodeMoves(const CompiledProblem& problem, std::vector<Vec2>& points,
       h0_(problem.h0),
       deps_(problem.params.deps * problem.h0),
       geps_(problem.params.geps * problem.h0),
+      lipschitz_(problem.lipschitz),
       nfix_(static_cast<int32_t>(problem.fixed_points.size())),
       p_(points),
       t_(triangles),
@@ -48,7 +49,7 @@ bool NodeMoves::star_stays_inside(int32_t v, Vec2 x, double d_at_x) const {
     Vec2 sum{0.0, 0.0};
     for (int32_t u : t_[*t]) sum = sum + (u == v ? x : p_[u]);
     const Vec2 centroid = (1.0 / 3.0) * sum;
-    if (d_at_x + norm(centroid - x) < -geps_) continue;
+    if (d_at_x + lipschitz_ * norm(centroid - x) < -geps_) continue;
     if (!(eval_sdf(fd_, centroid) < -geps_)) return false;
   }
   return true;

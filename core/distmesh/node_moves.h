@@ -35,7 +35,8 @@ class NodeMoves {
   // when the mesh came in. Triangles cross a spit of land where it is narrower than an edge, with
   // their centroids in the water; a node moved a little, or carried along the boundary round the
   // spit's tip, can put one on it. Far inside, the distance's bound at x decides without the
-  // centroids' (the distance grows by at most the way from x to a centroid).
+  // centroids' (the distance grows by at most CompiledProblem::lipschitz times the way from x to
+  // a centroid).
   bool star_stays_inside(int32_t v, Vec2 x, double d_at_x) const;
 
   // A boundary node this close (times h0) to the domain's boundary is on it: the snap moves
@@ -47,6 +48,7 @@ class NodeMoves {
   double h0_;
   double deps_;
   double geps_;
+  double lipschitz_;
   int32_t nfix_;
   std::vector<Vec2>& p_;
   const std::vector<std::array<int32_t, 3>>& t_;
